@@ -1,0 +1,55 @@
+#include "Case.hpp"
+
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace spindrift {
+
+Case Case::read(const fs::path& dir) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw InputError({dir.string(), 0, 0}, "case directory '" + dir.string() + "' does not exist");
+    Case c;
+    c.dir = dir;
+    c.name = fs::weakly_canonical(fs::absolute(dir)).filename().string();
+    c.controlDict = Dictionary::fromFile(dir / "system/controlDict");
+    c.sphSchemes = Dictionary::fromFile(dir / "system/sphSchemes");
+    if (fs::exists(dir / "system/sphSolution", ec))
+        c.sphSolution = Dictionary::fromFile(dir / "system/sphSolution");
+    else
+        c.sphSolution = Dictionary("sphSolution", {(dir / "system/sphSolution").string(), 0, 0});
+    c.fluidProperties = Dictionary::fromFile(dir / "constant/fluidProperties");
+    c.geometry = Dictionary::fromFile(dir / "constant/geometry");
+    return c;
+}
+
+PhysicalParameters readPhysicalParameters(const Dictionary& d) {
+    PhysicalParameters p;
+    const int dim = d.get<int>("dimension");
+    if (dim != 2 && dim != 3)
+        throw InputError(d.locationOf("dimension"), "dimension must be 2 or 3, not " + std::to_string(dim), "dimension");
+    p.dimension = dim;
+    p.rho0 = d.get<double>("rho0");
+    if (!(p.rho0 > 0)) throw InputError(d.locationOf("rho0"), "rho0 must be positive", "rho0");
+    p.nu = d.getOrDefault<double>("viscosity", 0.0);
+    if (p.nu < 0) throw InputError(d.locationOf("viscosity"), "viscosity must not be negative", "viscosity");
+    p.gravity = d.getOrDefault<Vec3>("gravity", Vec3::Zero());
+    if (dim == 2 && p.gravity[2] != 0)
+        throw InputError(d.locationOf("gravity"), "gravity must have z = 0 in two dimensions", "gravity");
+    p.particleSpacing = d.get<double>("particleSpacing");
+    if (!(p.particleSpacing > 0))
+        throw InputError(d.locationOf("particleSpacing"), "particleSpacing must be positive", "particleSpacing");
+    const double factor = d.getOrDefault<double>("supportRadius", 2.0);
+    if (!(factor >= 1.5) || factor > 6) {
+        std::ostringstream s;
+        s << "supportRadius " << factor << " (in units of particleSpacing) gives too "
+          << (factor > 6 ? "many" : "few") << " neighbours; use a value between 1.5 and 6 (typically 2-3)";
+        throw InputError(d.locationOf("supportRadius"), s.str(), "supportRadius");
+    }
+    p.supportRadius = Scalar(factor) * p.particleSpacing;
+    d.checkAllKeywordsUsed();
+    return p;
+}
+
+} // namespace spindrift

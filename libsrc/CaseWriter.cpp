@@ -1,0 +1,448 @@
+// Spindrift — case output: VTK XML PolyData per set and time, .pvd collection at the root.
+//
+// File layout (see CaseWriter.hpp):
+//   <case>/<time>/fluid.vtp, <case>/<time>/boundary.vtp (when walls were written that time),
+//   <case>/<caseName>.pvd listing every complete time with relative paths.
+// Arrays in a .vtp: points = positions; point data "id" (vtkTypeUInt32Array, i.e. VTK's
+// "UInt32", the type of Index), then the selected scalar (1 component) and vector
+// (3 components) fields as vtkDoubleArray (vtkFloatArray with SPINDRIFT_SINGLE_PRECISION);
+// field data "particleMass" (1 value, same type) so that a restart gets the mass back.
+#include "CaseWriter.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkTypeUInt32Array.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <type_traits>
+
+namespace fs = std::filesystem;
+
+namespace spindrift {
+
+namespace {
+
+using VtkScalarArray =
+    std::conditional_t<std::is_same_v<Scalar, double>, vtkDoubleArray, vtkFloatArray>;
+constexpr int vtkScalarType = std::is_same_v<Scalar, double> ? VTK_DOUBLE : VTK_FLOAT;
+
+// Collects the error messages VTK objects emit (instead of letting VTK print them to stderr),
+// so that a failure becomes one std::runtime_error with VTK's own words in it. Keeps the text
+// of each message without VTK's "ERROR: In <source>, line <n> <class> (<address>): " prefix;
+// the executive's generic "returned failure for request" only when nothing better was said.
+class ErrorCollector : public vtkCommand {
+public:
+    static ErrorCollector* New() { return new ErrorCollector; }
+    void Execute(vtkObject*, unsigned long, void* callData) override {
+        std::string text = callData ? static_cast<const char*>(callData) : "unknown VTK error";
+        if (auto colon = text.find("): "); colon != std::string::npos) text.erase(0, colon + 3);
+        if (auto newline = text.find_first_of("\r\n"); newline != std::string::npos)
+            text.erase(newline);
+        if (text.find("returned failure for request") != std::string::npos) {
+            if (generic.empty()) generic = text;
+            return;
+        }
+        if (!specific.empty()) specific += "; ";
+        specific += text;
+    }
+    bool any() const { return !specific.empty() || !generic.empty(); }
+    std::string message() const { return specific.empty() ? generic : specific; }
+
+private:
+    std::string specific, generic;
+};
+
+bool selected(const std::string& name, const FieldOptions& options,
+              const std::vector<std::string>& fieldNames) {
+    if (options.restart) return true;
+    if (fieldNames.empty()) return options.output;
+    return std::find(fieldNames.begin(), fieldNames.end(), name) != fieldNames.end();
+}
+
+vtkSmartPointer<VtkScalarArray> scalarArray(const std::string& name,
+                                            const std::vector<Scalar>& data) {
+    auto array = vtkSmartPointer<VtkScalarArray>::New();
+    array->SetName(name.c_str());
+    array->SetNumberOfComponents(1);
+    array->SetNumberOfTuples(static_cast<vtkIdType>(data.size()));
+    std::copy(data.begin(), data.end(), array->GetPointer(0));
+    return array;
+}
+
+vtkSmartPointer<VtkScalarArray> vectorArray(const std::string& name,
+                                            const std::vector<Vec3>& data) {
+    auto array = vtkSmartPointer<VtkScalarArray>::New();
+    array->SetName(name.c_str());
+    array->SetNumberOfComponents(3);
+    array->SetNumberOfTuples(static_cast<vtkIdType>(data.size()));
+    Scalar* out = array->GetPointer(0);
+    for (std::size_t i = 0; i < data.size(); ++i) {
+        out[3 * i + 0] = data[i][0];
+        out[3 * i + 1] = data[i][1];
+        out[3 * i + 2] = data[i][2];
+    }
+    return array;
+}
+
+// True when 'name' is a number written as a whole (what timeName produces).
+bool parseTimeName(const std::string& name, double& value) {
+    if (name.empty() || name.front() == '.') return false;
+    const char* begin = name.c_str();
+    char* end = nullptr;
+    value = std::strtod(begin, &end);
+    return end == begin + name.size() && std::isfinite(value);
+}
+
+// True when the file ends with "</VTKFile>" (and white space): a cheap check that it is not
+// truncated, before VTK reads array sizes from a possibly missing appended-data section.
+bool endsWithClosingTag(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    if (!in || size <= 0) return false;
+    const std::streamoff tail = std::min<std::streamoff>(size, 256);
+    std::string text(static_cast<std::size_t>(tail), '\0');
+    in.seekg(size - tail);
+    in.read(text.data(), tail);
+    if (!in) return false;
+    const auto last = text.find_last_not_of(" \t\r\n");
+    const std::string tag = "</VTKFile>";
+    return last != std::string::npos && last + 1 >= tag.size() &&
+           text.compare(last + 1 - tag.size(), tag.size(), tag) == 0;
+}
+
+// Writes 'text' to 'file' through "<file>.tmp" and a rename.
+void writeFileAtomically(const fs::path& file, const std::string& text) {
+    fs::path tmp = file;
+    tmp += ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw std::runtime_error("cannot write '" + tmp.string() + "'");
+        out << text;
+        out.close();
+        if (!out) throw std::runtime_error("error writing '" + tmp.string() + "'");
+    }
+    std::error_code ec;
+    fs::rename(tmp, file, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot rename '" + tmp.string() + "' to '" + file.string() +
+                                 "'");
+    }
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// .vtp files
+
+void writeVtp(const fs::path& file, const ParticleSet& set,
+              const std::vector<std::string>& fieldNames) {
+    const std::size_t n = set.size();
+    const auto count = static_cast<vtkIdType>(n);
+
+    vtkNew<vtkPolyData> poly;
+
+    vtkNew<vtkPoints> points;
+    points->SetDataType(vtkScalarType);
+    points->SetNumberOfPoints(count);
+    {
+        auto* coords = static_cast<Scalar*>(points->GetData()->GetVoidPointer(0));
+        const auto& x = set.position();
+        for (std::size_t i = 0; i < n; ++i) {
+            coords[3 * i + 0] = x[i][0];
+            coords[3 * i + 1] = x[i][1];
+            coords[3 * i + 2] = x[i][2];
+        }
+    }
+    poly->SetPoints(points);
+
+    // One vertex cell per particle: offsets 0..n, connectivity 0..n-1.
+    vtkNew<vtkIdTypeArray> offsets;
+    vtkNew<vtkIdTypeArray> connectivity;
+    offsets->SetNumberOfTuples(count + 1);
+    connectivity->SetNumberOfTuples(count);
+    for (vtkIdType i = 0; i < count; ++i) {
+        offsets->SetValue(i, i);
+        connectivity->SetValue(i, i);
+    }
+    offsets->SetValue(count, count);
+    vtkNew<vtkCellArray> verts;
+    verts->SetData(offsets, connectivity);
+    poly->SetVerts(verts);
+
+    vtkPointData* pointData = poly->GetPointData();
+    {
+        vtkNew<vtkTypeUInt32Array> id;
+        id->SetName("id");
+        id->SetNumberOfComponents(1);
+        id->SetNumberOfTuples(count);
+        std::copy(set.id().begin(), set.id().end(), id->GetPointer(0));
+        pointData->AddArray(id);
+    }
+    for (const auto& f : set.scalarFields()) {
+        if (f->data.size() != n || !selected(f->name, f->options, fieldNames)) continue;
+        pointData->AddArray(scalarArray(f->name, f->data));
+    }
+    for (const auto& f : set.vectorFields()) {
+        if (f->name == "position" || f->data.size() != n ||
+            !selected(f->name, f->options, fieldNames))
+            continue;
+        pointData->AddArray(vectorArray(f->name, f->data));
+    }
+    {
+        vtkNew<VtkScalarArray> mass;
+        mass->SetName("particleMass");
+        mass->SetNumberOfComponents(1);
+        mass->SetNumberOfTuples(1);
+        mass->SetValue(0, set.particleMass());
+        poly->GetFieldData()->AddArray(mass);
+    }
+
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    vtkNew<ErrorCollector> errors;
+    writer->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    writer->SetFileName(file.string().c_str());
+    writer->SetInputData(poly);
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff(); // raw binary
+    writer->SetCompressorTypeToNone();
+    writer->SetHeaderTypeToUInt64(); // arrays above 4 GiB
+    const int ok = writer->Write();
+    if (!ok || writer->GetErrorCode() != 0 || errors->any())
+        throw std::runtime_error("cannot write '" + file.string() + "'" +
+                                 (errors->any() ? ": " + errors->message() : std::string()));
+}
+
+ParticleSet readVtp(const fs::path& file, const std::string& setName) {
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec))
+        throw std::runtime_error("cannot read '" + file.string() + "': no such file");
+
+    vtkNew<vtkXMLPolyDataReader> reader;
+    vtkNew<ErrorCollector> errors;
+    reader->AddObserver(vtkCommand::ErrorEvent, errors);
+    reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+    reader->SetReaderErrorObserver(errors);
+    reader->SetParserErrorObserver(errors);
+    if (!reader->CanReadFile(file.string().c_str()))
+        throw std::runtime_error("cannot read '" + file.string() +
+                                 "': not a VTK XML PolyData file");
+    if (!endsWithClosingTag(file))
+        throw std::runtime_error("cannot read '" + file.string() +
+                                 "': truncated (no closing </VTKFile>)");
+    reader->SetFileName(file.string().c_str());
+    try {
+        reader->Update();
+    } catch (const std::exception& e) { // e.g. bad_alloc for a garbage array size
+        throw std::runtime_error("cannot read '" + file.string() + "': " + e.what());
+    }
+    vtkPolyData* poly = reader->GetOutput();
+    if (errors->any() || reader->GetErrorCode() != 0 || !poly)
+        throw std::runtime_error("cannot read '" + file.string() + "'" +
+                                 (errors->any() ? ": " + errors->message() : std::string()));
+
+    ParticleSet set(setName);
+    const vtkIdType count = poly->GetNumberOfPoints();
+    const auto n = static_cast<std::size_t>(count);
+    set.resize(n);
+
+    if (vtkPoints* points = poly->GetPoints()) {
+        auto& x = set.position();
+        double p[3];
+        for (vtkIdType i = 0; i < count; ++i) {
+            points->GetPoint(i, p);
+            x[static_cast<std::size_t>(i)] =
+                Vec3(static_cast<Scalar>(p[0]), static_cast<Scalar>(p[1]),
+                     static_cast<Scalar>(p[2]));
+        }
+    }
+
+    vtkPointData* pointData = poly->GetPointData();
+    for (int a = 0; a < pointData->GetNumberOfArrays(); ++a) {
+        vtkDataArray* array = pointData->GetArray(a); // null for non-numeric arrays
+        if (!array || !array->GetName() || array->GetNumberOfTuples() != count) continue;
+        const std::string name = array->GetName();
+        const int components = array->GetNumberOfComponents();
+        if (name == "id" && components == 1) {
+            auto& id = set.id();
+            for (vtkIdType i = 0; i < count; ++i)
+                id[static_cast<std::size_t>(i)] = static_cast<Index>(array->GetComponent(i, 0));
+        } else if (components == 1) {
+            auto& data = set.addScalar(name);
+            for (vtkIdType i = 0; i < count; ++i)
+                data[static_cast<std::size_t>(i)] = static_cast<Scalar>(array->GetComponent(i, 0));
+        } else if (components == 3 && name != "position") {
+            auto& data = set.addVector(name);
+            for (vtkIdType i = 0; i < count; ++i)
+                data[static_cast<std::size_t>(i)] =
+                    Vec3(static_cast<Scalar>(array->GetComponent(i, 0)),
+                         static_cast<Scalar>(array->GetComponent(i, 1)),
+                         static_cast<Scalar>(array->GetComponent(i, 2)));
+        }
+    }
+
+    if (vtkFieldData* fieldData = poly->GetFieldData())
+        if (vtkDataArray* mass = fieldData->GetArray("particleMass"))
+            if (mass->GetNumberOfTuples() >= 1 && mass->GetNumberOfComponents() == 1)
+                set.setParticleMass(static_cast<Scalar>(mass->GetComponent(0, 0)));
+    return set;
+}
+
+// ---------------------------------------------------------------------------------------------
+// CaseWriter
+
+CaseWriter::CaseWriter(fs::path caseDir, int timePrecision)
+    : caseDir_(std::move(caseDir)), precision_(timePrecision) {}
+
+std::string CaseWriter::timeName(double time, int precision) {
+    if (time == 0) time = 0; // no "-0"
+    std::ostringstream s;
+    s << std::setprecision(precision) << time;
+    return s.str();
+}
+
+fs::path CaseWriter::collectionFile() const {
+    std::error_code ec;
+    fs::path dir = fs::weakly_canonical(fs::absolute(caseDir_), ec);
+    if (ec) dir = fs::absolute(caseDir_).lexically_normal();
+    if (dir.filename().empty()) dir = dir.parent_path(); // trailing slash
+    std::string name = dir.filename().string();
+    if (name.empty() || name == "." || name == "..") name = "case";
+    return caseDir_ / (name + ".pvd");
+}
+
+std::vector<std::pair<double, std::string>> CaseWriter::existingTimes() const {
+    std::vector<std::pair<double, std::string>> times;
+    std::error_code ec;
+    if (!fs::is_directory(caseDir_, ec)) return times;
+    for (fs::directory_iterator it(caseDir_, ec), end; !ec && it != end; it.increment(ec)) {
+        std::error_code entryEc;
+        if (!it->is_directory(entryEc)) continue;
+        const std::string name = it->path().filename().string();
+        double value = 0;
+        if (!parseTimeName(name, value)) continue; // also skips hidden ".<time>.tmp"
+        if (!fs::is_regular_file(it->path() / "fluid.vtp", entryEc)) continue;
+        times.emplace_back(value, name);
+    }
+    std::sort(times.begin(), times.end());
+    return times;
+}
+
+void CaseWriter::scan() {
+    times_.clear();
+    boundaryTimeName_.clear();
+    for (auto& [value, name] : existingTimes()) {
+        std::error_code ec;
+        const bool boundary = fs::is_regular_file(caseDir_ / name / "boundary.vtp", ec);
+        if (boundary) boundaryTimeName_ = name;
+        times_.push_back({value, name, boundary});
+    }
+    scanned_ = true;
+}
+
+void CaseWriter::rebuildCollection() {
+    scan();
+    writeCollection();
+}
+
+void CaseWriter::write(double time, const ParticleSet& fluid, const ParticleSet* boundary,
+                       const std::vector<std::string>& fieldNames) {
+    if (!scanned_) scan();
+    const std::string name = timeName(time, precision_);
+    const fs::path finalDir = caseDir_ / name;
+    const fs::path tmpDir = caseDir_ / ("." + name + ".tmp");
+
+    std::error_code ec;
+    fs::create_directories(caseDir_, ec);
+    if (ec)
+        throw std::runtime_error("cannot create the case directory '" + caseDir_.string() +
+                                 "': " + ec.message());
+    fs::remove_all(tmpDir, ec); // stale, from an interrupted run
+    if (!fs::create_directory(tmpDir, ec) || ec)
+        throw std::runtime_error("cannot create '" + tmpDir.string() + "': " +
+                                 (ec ? ec.message() : std::string("it exists")));
+
+    bool hasBoundary = boundary != nullptr;
+    try {
+        writeVtp(tmpDir / "fluid.vtp", fluid, fieldNames);
+        if (boundary) {
+            writeVtp(tmpDir / "boundary.vtp", *boundary, fieldNames);
+        } else if (fs::is_regular_file(finalDir / "boundary.vtp", ec)) {
+            // Rewriting a time that held the (static) walls: keep them, later times refer
+            // to them.
+            fs::copy_file(finalDir / "boundary.vtp", tmpDir / "boundary.vtp");
+            hasBoundary = true;
+        }
+        if (fs::exists(finalDir, ec)) fs::remove_all(finalDir);
+        fs::rename(tmpDir, finalDir);
+    } catch (const fs::filesystem_error& e) {
+        fs::remove_all(tmpDir, ec);
+        throw std::runtime_error("cannot write time directory '" + finalDir.string() +
+                                 "': " + e.what());
+    } catch (...) {
+        fs::remove_all(tmpDir, ec);
+        throw;
+    }
+
+    // Update the list of complete times (replace an entry of the same name).
+    double value = 0;
+    if (!parseTimeName(name, value)) value = time;
+    std::erase_if(times_, [&](const TimeEntry& e) { return e.name == name; });
+    TimeEntry entry{value, name, hasBoundary};
+    auto pos = std::upper_bound(times_.begin(), times_.end(), entry,
+                                [](const TimeEntry& a, const TimeEntry& b) {
+                                    return a.value < b.value ||
+                                           (a.value == b.value && a.name < b.name);
+                                });
+    times_.insert(pos, entry);
+    // boundaryTimeName_ = newest time holding walls (rewriting an older time keeps it).
+    for (const auto& e : times_)
+        if (e.hasBoundary) boundaryTimeName_ = e.name;
+
+    writeCollection();
+}
+
+void CaseWriter::writeCollection() const {
+    std::ostringstream s;
+    s << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+    const std::string* lastBoundary = nullptr; // newest boundary.vtp at or before each time
+    for (const auto& e : times_) {
+        if (e.hasBoundary) lastBoundary = &e.name;
+        s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"0\" file=\""
+          << e.name << "/fluid.vtp\" name=\"fluid\"/>\n";
+        if (lastBoundary)
+            s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"1\" file=\""
+              << *lastBoundary << "/boundary.vtp\" name=\"boundary\"/>\n";
+    }
+    s << "  </Collection>\n"
+      << "</VTKFile>\n";
+    std::error_code ec;
+    fs::create_directories(caseDir_, ec);
+    writeFileAtomically(collectionFile(), s.str());
+}
+
+} // namespace spindrift

@@ -1,0 +1,72 @@
+// Spindrift — output of a case: one directory per written time holding fluid.vtp (and
+// boundary.vtp for walls), plus <caseName>.pvd at the case root listing every complete time.
+//
+// Files are VTK XML PolyData, binary appended, written with the VTK library; points are the
+// particle positions (one vertex cell per particle), point-data arrays are the set's fields.
+// A time directory is written under a temporary name (".<time>.tmp") and renamed when
+// complete; the .pvd is written to a temporary file and renamed. So a crash never leaves a
+// half-written time directory visible, and the .pvd lists only complete ones.
+#pragma once
+
+#include "ParticleSet.hpp"
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace spindrift {
+
+class CaseWriter {
+public:
+    // caseDir: the case root; the collection file is <caseDir>/<caseName>.pvd with
+    // caseName = the directory's name.
+    explicit CaseWriter(std::filesystem::path caseDir, int timePrecision = 6);
+
+    // OpenFOAM-style time name: general format with 'precision' significant digits
+    // (0 -> "0", 0.05 -> "0.05", 1e-05 -> "1e-05", 1.25 -> "1.25").
+    static std::string timeName(double time, int precision = 6);
+
+    // Writes <caseDir>/<timeName(time)>/fluid.vtp and, when 'boundary' is given,
+    // boundary.vtp, then rewrites the .pvd. A boundary written once (static walls) is referenced
+    // from every later time: pass boundary = nullptr and the .pvd points to the last
+    // boundary.vtp written. 'fieldNames': arrays to write besides 'id' (empty = every field
+    // flagged output); fields flagged restart are always written.
+    void write(double time, const ParticleSet& fluid, const ParticleSet* boundary,
+               const std::vector<std::string>& fieldNames = {});
+
+    // Complete time directories present in the case (numeric name holding fluid.vtp),
+    // sorted by time.
+    std::vector<std::pair<double, std::string>> existingTimes() const;
+
+    // Rebuilds the .pvd from the complete time directories present (used at start-up).
+    void rebuildCollection();
+
+    const std::filesystem::path& caseDir() const { return caseDir_; }
+    std::filesystem::path collectionFile() const;
+
+private:
+    struct TimeEntry {
+        double value;     // the time name's numeric value
+        std::string name; // directory name
+        bool hasBoundary; // holds boundary.vtp
+    };
+    void scan();                  // fills times_ and boundaryTimeName_ from the case directory
+    void writeCollection() const; // writes the .pvd from times_
+
+    std::filesystem::path caseDir_;
+    int precision_;
+    std::string boundaryTimeName_; // time directory holding the last written boundary.vtp
+    std::vector<TimeEntry> times_; // complete times, sorted (scanned once, then kept up to date)
+    bool scanned_ = false;
+};
+
+// Writes one particle set as a .vtp file (binary appended) — used by CaseWriter.
+void writeVtp(const std::filesystem::path& file, const ParticleSet& set,
+              const std::vector<std::string>& fieldNames = {});
+
+// Reads a .vtp written by writeVtp back into a ParticleSet: positions, id, and every
+// point-data array as a scalar (1 component) or vector (3 components) field.
+ParticleSet readVtp(const std::filesystem::path& file, const std::string& setName = "fluid");
+
+} // namespace spindrift

@@ -1,0 +1,155 @@
+#include "Geometry.hpp"
+
+#include "Log.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace spindrift {
+namespace {
+
+struct Box {
+    Vec3 min, max;
+    bool contains(const Vec3& p, int dim, Scalar tol = 0) const {
+        for (int a = 0; a < dim; ++a)
+            if (p[a] < min[a] - tol || p[a] > max[a] + tol) return false;
+        return true;
+    }
+};
+
+Box readBox(const Dictionary& d, int dim) {
+    Box b{d.get<Vec3>("min"), d.get<Vec3>("max")};
+    for (int a = 0; a < dim; ++a)
+        if (!(b.max[a] > b.min[a])) {
+            std::ostringstream s;
+            s << "'max' must exceed 'min' in every direction (axis " << "xyz"[a] << ": min " << b.min[a]
+              << ", max " << b.max[a] << ") in " << d.name();
+            throw InputError(d.locationOf("max"), s.str(), "max");
+        }
+    if (dim == 2) b.min[2] = b.max[2] = 0;
+    return b;
+}
+
+// Lattice of cell centres lo + (i + ½)Δx covering [lo, hi] (n = round((hi - lo)/Δx) cells per axis).
+template <class F> void forEachLatticePoint(const Vec3& lo, const Vec3& hi, Scalar dx, int dim, F&& f) {
+    long n[3] = {1, 1, 1};
+    for (int a = 0; a < dim; ++a) n[a] = std::max(0L, std::lround((hi[a] - lo[a]) / dx));
+    for (long k = 0; k < n[2]; ++k)
+        for (long j = 0; j < n[1]; ++j)
+            for (long i = 0; i < n[0]; ++i) {
+                Vec3 p(lo[0] + (i + Scalar(0.5)) * dx, lo[1] + (j + Scalar(0.5)) * dx,
+                       dim == 3 ? lo[2] + (k + Scalar(0.5)) * dx : Scalar(0));
+                f(p);
+            }
+}
+
+int faceIndex(const std::string& face) {
+    static const char* names[6] = {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"};
+    for (int i = 0; i < 6; ++i)
+        if (face == names[i]) return i;
+    return -1;
+}
+
+} // namespace
+
+SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
+    SampledGeometry out;
+    std::vector<Box> solids;
+
+    if (const Dictionary* walls = geometry.findDict("walls")) {
+        for (const auto& name : walls->keywords()) {
+            const Dictionary& w = walls->subDict(name);
+            const std::string type = w.getWord("type", {"container", "box"});
+            const Box box = readBox(w, dim);
+            const int layers = w.getOrDefault<int>("layers", 3);
+            if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
+            const Scalar L = layers * dx;
+            const std::size_t before = out.wallPositions.size();
+            if (type == "container") {
+                bool open[6] = {false, false, false, false, false, false};
+                for (const auto& face : w.getOrDefault<std::vector<std::string>>("open", {})) {
+                    const int f = faceIndex(face);
+                    if (f < 0 || f / 2 >= dim)
+                        throw InputError(w.locationOf("open"), "unknown face '" + face +
+                                         "' in 'open'; valid: (xMin xMax yMin yMax" +
+                                         std::string(dim == 3 ? " zMin zMax)" : ")"), "open");
+                    open[f] = true;
+                }
+                // Inner extent must be a whole number of spacings for the lattice to continue.
+                Vec3 lo = box.min, hi = box.max;
+                for (int a = 0; a < dim; ++a) {
+                    const Scalar cells = std::round((hi[a] - lo[a]) / dx);
+                    if (std::abs(cells * dx - (hi[a] - lo[a])) > 1e-6 * dx) {
+                        std::ostringstream s;
+                        s << "walls." << name << ": size along " << "xyz"[a] << " is not a multiple of "
+                          << "particleSpacing; the wall is placed at " << lo[a] + cells * dx;
+                        log::warning(s.str());
+                        hi[a] = lo[a] + cells * dx;
+                    }
+                }
+                Vec3 outerLo = lo, outerHi = hi;
+                for (int a = 0; a < dim; ++a) {
+                    outerLo[a] -= L;
+                    outerHi[a] += L;
+                }
+                forEachLatticePoint(outerLo, outerHi, dx, dim, [&](const Vec3& p) {
+                    bool outside = false;
+                    for (int a = 0; a < dim; ++a) {
+                        if (p[a] < lo[a] && !open[2 * a]) outside = true;
+                        if (p[a] > hi[a] && !open[2 * a + 1]) outside = true;
+                    }
+                    // open faces: drop the whole slab beyond them
+                    for (int a = 0; a < dim; ++a) {
+                        if (p[a] < lo[a] && open[2 * a]) outside = false;
+                        if (p[a] > hi[a] && open[2 * a + 1]) outside = false;
+                    }
+                    if (outside) out.wallPositions.push_back(p);
+                });
+            } else { // solid box: outermost layers inside the surface
+                solids.push_back(box);
+                forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
+                    Scalar depth = std::numeric_limits<Scalar>::max();
+                    for (int a = 0; a < dim; ++a)
+                        depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
+                    if (depth < L) out.wallPositions.push_back(p);
+                });
+            }
+            if (out.wallPositions.size() == before)
+                throw InputError(w.where(), "wall '" + name + "' produced no particles (is it smaller than particleSpacing?)");
+            w.checkAllKeywordsUsed();
+        }
+    }
+
+    const Dictionary& fluid = geometry.subDict("fluid");
+    for (const auto& name : fluid.keywords()) {
+        const Dictionary& f = fluid.subDict(name);
+        f.getWord("type", {"box"});
+        const Box box = readBox(f, dim);
+        Vec3 velocity = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
+        if (dim == 2) velocity[2] = 0;
+        const std::size_t before = out.fluidPositions.size();
+        forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
+            for (const auto& s : solids)
+                if (s.contains(p, dim)) return;
+            out.fluidPositions.push_back(p);
+            out.fluidVelocities.push_back(velocity);
+        });
+        if (out.fluidPositions.size() == before)
+            throw InputError(f.where(), "fluid block '" + name + "' produced no particles (is it smaller than particleSpacing, or inside a wall?)");
+        f.checkAllKeywordsUsed();
+    }
+    geometry.checkAllKeywordsUsed();
+
+    Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::max()), hi = -lo;
+    for (const auto* set : {&out.fluidPositions, &out.wallPositions})
+        for (const auto& p : *set) {
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        }
+    if (dim == 2) lo[2] = hi[2] = 0;
+    out.boundsMin = lo;
+    out.boundsMax = hi;
+    return out;
+}
+
+} // namespace spindrift

@@ -1,0 +1,44 @@
+#include "KernelTable.hpp"
+
+#include <stdexcept>
+
+namespace spindrift {
+
+template <class F> std::vector<KernelTable::Block> KernelTable::tabulate(F&& f) const {
+    // Cubic Hermite on each interval [r0, r1] from values and one-sided slopes, computed in
+    // double precision whatever Scalar is.
+    const double dr = double(h_) / intervals_;
+    const double e = dr * 1e-4;
+    std::vector<Block> table(intervals_);
+    for (int k = 0; k < intervals_; ++k) {
+        const double r0 = k * dr, r1 = (k + 1) * dr;
+        const double f0 = f(r0), f1 = (k + 1 == intervals_) ? f(r1 - 1e-12 * dr) : f(r1);
+        // one-sided second-order differences, staying inside the interval
+        const double s0 = (-3.0 * f0 + 4.0 * f(r0 + e) - f(r0 + 2 * e)) / (2 * e) * dr;
+        const double s1 = (3.0 * f1 - 4.0 * f(r1 - e) + f(r1 - 2 * e)) / (2 * e) * dr;
+        table[k] = {Scalar(f0), Scalar(s0), Scalar(3 * (f1 - f0) - 2 * s0 - s1),
+                    Scalar(2 * (f0 - f1) + s0 + s1)};
+    }
+    return table;
+}
+
+void KernelTable::build(const Kernel& kernel, int intervals) {
+    if (intervals < 8) throw std::invalid_argument("KernelTable: too few intervals");
+    kernel_ = &kernel;
+    h_ = kernel.supportRadius();
+    dim_ = kernel.dimension();
+    intervals_ = intervals;
+    invDr_ = Scalar(intervals) / h_;
+    w0_ = kernel.W(0);
+    w_ = tabulate([&](double r) { return double(kernel.W(Scalar(r))); });
+    dw_ = tabulate([&](double r) { return double(kernel.dWdr(Scalar(r))); });
+    lap_.clear();
+}
+
+void KernelTable::enableLaplacian() {
+    if (!lap_.empty()) return;
+    if (!kernel_) throw std::logic_error("KernelTable::enableLaplacian before build");
+    lap_ = tabulate([&](double r) { return double(kernel_->laplacian(Scalar(r))); });
+}
+
+} // namespace spindrift

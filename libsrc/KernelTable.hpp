@@ -1,0 +1,61 @@
+// Spindrift — tabulated kernel for hot loops.
+//
+// W(r), dW/dr and (on demand) ∇²W are stored as piecewise cubic Hermite polynomials on
+// 'intervals' equal intervals of [0, h]: one contiguous block of four coefficients per
+// interval, evaluated with Horner's rule. Node values come from the analytic kernel, node
+// slopes from one-sided differences inside each interval, so kinks at interval nodes (the
+// cubic spline at q = 1/2) are reproduced. Tests hold the table against the analytic kernel.
+#pragma once
+
+#include "Kernel.hpp"
+
+#include <array>
+#include <vector>
+
+namespace spindrift {
+
+class KernelTable {
+public:
+    KernelTable() = default;
+    explicit KernelTable(const Kernel& kernel, int intervals = 1024) { build(kernel, intervals); }
+
+    void build(const Kernel& kernel, int intervals = 1024);
+    // Tabulates ∇²W too (models that need it call this in their initialise()).
+    void enableLaplacian();
+    bool hasLaplacian() const { return !lap_.empty(); }
+
+    Scalar supportRadius() const { return h_; }
+    int dimension() const { return dim_; }
+
+    Scalar W(Scalar r) const { return evaluate(w_, r); }
+    Scalar dWdr(Scalar r) const { return evaluate(dw_, r); }
+    Scalar laplacian(Scalar r) const { return evaluate(lap_, r); }
+
+    // ∇_i W_ij for r_ij = x_i − x_j with |r_ij| = r (zero at r = 0).
+    Vec3 gradW(const Vec3& rij, Scalar r) const {
+        return r > Scalar(0) ? Vec3(rij * (dWdr(r) / r)) : Vec3::Zero();
+    }
+    Vec3 gradW(const Vec3& rij) const { return gradW(rij, rij.norm()); }
+
+    Scalar W0() const { return w0_; } // W(0), the self contribution
+
+private:
+    using Block = std::array<Scalar, 4>; // f(t) = c0 + t (c1 + t (c2 + t c3)), t in [0, 1)
+
+    Scalar evaluate(const std::vector<Block>& table, Scalar r) const {
+        const Scalar s = r * invDr_;
+        const int k = static_cast<int>(s);
+        if (k >= intervals_ || r < Scalar(0)) return Scalar(0);
+        const Scalar t = s - Scalar(k);
+        const Block& c = table[k];
+        return c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+    }
+    template <class F> std::vector<Block> tabulate(F&& f) const;
+
+    const Kernel* kernel_ = nullptr; // for enableLaplacian(); owned by the caller
+    Scalar h_ = 0, invDr_ = 0, w0_ = 0;
+    int dim_ = 3, intervals_ = 0;
+    std::vector<Block> w_, dw_, lap_;
+};
+
+} // namespace spindrift

@@ -1,0 +1,85 @@
+// Spindrift — run-time selection of models from plugin libraries (Boost.DLL).
+//
+// A model of kind K named N lives in libspindrift_<K>_<N>.so, found on the plugin path:
+// $SPINDRIFT_PLUGIN_PATH (colon-separated), <executable>/../lib/spindrift/plugins, the build
+// tree and the install prefix. Only the libraries a case names are opened; listing the valid
+// types reads file names, it opens nothing. User plugins named in controlDict `libs (...)` are
+// opened explicitly and register the kind and name they export. A library whose ABI version
+// differs from the core's is refused with a message. Libraries stay loaded until exit.
+#pragma once
+
+#include "BoundaryModel.hpp"
+#include "Integrator.hpp"
+#include "Kernel.hpp"
+#include "PressureModel.hpp"
+#include "ViscosityModel.hpp"
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace spindrift {
+
+template <> struct KindName<Kernel> { static constexpr const char* value = "kernel"; };
+template <> struct KindName<PressureModel> { static constexpr const char* value = "pressure"; };
+template <> struct KindName<ViscosityModel> { static constexpr const char* value = "viscosity"; };
+template <> struct KindName<Integrator> { static constexpr const char* value = "integrator"; };
+template <> struct KindName<BoundaryModel> { static constexpr const char* value = "boundary"; };
+
+class ModelRegistry {
+public:
+    // The process-wide registry (libraries it opened stay loaded until exit).
+    static ModelRegistry& instance();
+
+    static const std::vector<std::string>& kinds(); // kernel pressure viscosity integrator boundary
+
+    const std::vector<std::filesystem::path>& searchPath() const { return searchPath_; }
+    void prependSearchDirectory(const std::filesystem::path& dir);
+
+    // Opens a user plugin library (controlDict `libs`); relative paths are tried against
+    // 'baseDir' and then the search path. Errors name 'where'.
+    void loadUserLibrary(const std::string& file, const std::filesystem::path& baseDir,
+                         const SourceLocation& where);
+
+    // Valid type names of a kind (from file names on the search path + user libraries).
+    std::vector<std::string> available(const std::string& kind) const;
+
+    // Creates the model named by `type` in 'dict' (a sub-dictionary such as
+    // sphSchemes.pressure). Unknown type -> InputError at the `type` entry:
+    // "Unknown pressure type 'pcsph'. Valid pressure types are: (...)".
+    template <class Base>
+    std::unique_ptr<Base> create(const Dictionary& dict, const PhysicalParameters& physics,
+                                 const Dictionary* solution = nullptr) {
+        const std::string kind = KindName<Base>::value;
+        const std::string type = typeOf(kind, dict);
+        auto factory = reinterpret_cast<Factory<Base>*>(factoryFor(kind, type, dict));
+        ModelContext context{dict, physics, solution};
+        auto model = factory(context);
+        dict.checkAllKeywordsUsed();
+        return model;
+    }
+
+    // Paths of the libraries opened so far, in order.
+    std::vector<std::string> loadedLibraries() const;
+
+private:
+    ModelRegistry();
+    std::string typeOf(const std::string& kind, const Dictionary& dict) const;
+    void* factoryFor(const std::string& kind, const std::string& type, const Dictionary& dict);
+    struct Library;
+    struct Loaded {
+        std::string kind, name;
+        std::filesystem::path file;
+        std::shared_ptr<Library> library;
+    };
+    Loaded open(const std::filesystem::path& file, const SourceLocation& where);
+
+    std::vector<std::filesystem::path> searchPath_;
+    std::vector<Loaded> loaded_;
+};
+
+std::string pluginFileName(const std::string& kind, const std::string& name);
+
+} // namespace spindrift

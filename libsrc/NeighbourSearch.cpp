@@ -1,0 +1,119 @@
+#include "NeighbourSearch.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace spindrift {
+
+void UniformGrid::setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax) {
+    if (!(cellSize > 0)) throw std::invalid_argument("UniformGrid: cell size must be positive");
+    dim_ = dimension;
+    origin_ = domainMin;
+    invCell_ = Scalar(1) / cellSize;
+    for (int a = 0; a < 3; ++a) {
+        const double extent = std::max(double(domainMax[a] - domainMin[a]), 0.0);
+        dims_[a] = (a == 2 && dim_ == 2) ? 1 : std::max(1, int(std::ceil(extent * invCell_)) + 1);
+    }
+    const double cells = double(dims_[0]) * dims_[1] * dims_[2];
+    if (cells > 2e8)
+        throw std::runtime_error("neighbour search: the domain is too large for the support radius (" +
+                                 std::to_string(cells) + " cells)");
+    cellStart_.assign(std::size_t(cells) + 1, 0);
+    sorted_.clear();
+}
+
+void UniformGrid::cellCoords(const Vec3& p, int c[3]) const {
+    for (int a = 0; a < 3; ++a) {
+        const Scalar s = (p[a] - origin_[a]) * invCell_;
+        // clamp (also maps NaN to cell 0)
+        c[a] = s >= Scalar(0) ? (s < Scalar(dims_[a] - 1) ? int(s) : dims_[a] - 1) : 0;
+    }
+    if (dim_ == 2) c[2] = 0;
+}
+
+namespace {
+std::uint64_t spreadBits(std::uint64_t v) { // 21 bits -> every third bit
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+}
+} // namespace
+
+std::uint64_t UniformGrid::mortonCode(const Vec3& p) const {
+    int c[3];
+    cellCoords(p, c);
+    return spreadBits(c[0]) | spreadBits(c[1]) << 1 | spreadBits(c[2]) << 2;
+}
+
+void UniformGrid::build(const std::vector<Vec3>& points) {
+    const std::size_t n = points.size(), cells = cellCount();
+    cellOf_.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        int c[3];
+        cellCoords(points[i], c);
+        cellOf_[i] = Index((std::size_t(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0]);
+    }
+    // stable counting sort: cellStart_[c] = first slot of cell c
+    std::fill(cellStart_.begin(), cellStart_.end(), 0);
+    for (std::size_t i = 0; i < n; ++i) ++cellStart_[cellOf_[i] + 1];
+    for (std::size_t c = 0; c < cells; ++c) cellStart_[c + 1] += cellStart_[c];
+    sorted_.resize(n);
+    std::vector<Index> fill(cellStart_.begin(), cellStart_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) sorted_[fill[cellOf_[i]]++] = Index(i);
+}
+
+void NeighbourSearch::setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax) {
+    radius_ = radius;
+    dim_ = dimension;
+    fluidGrid_.setup(radius, dimension, domainMin, domainMax);
+    boundaryGrid_.setup(radius, dimension, domainMin, domainMax);
+}
+
+void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
+    boundaryPoints_ = boundaryPoints;
+    boundaryGrid_.build(boundaryPoints_);
+}
+
+void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
+    fluidGrid_.build(fluid);
+    buildNeighbourList(fluid.size(), fluidFluid_, [&](std::size_t i, auto&& push) {
+        fluidGrid_.forEachWithin(fluid[i], fluid, radius_, [&](Index j) {
+            if (j != i) push(j);
+        });
+    });
+    if (boundaryPoints_.empty()) {
+        fluidBoundary_.offsets.assign(fluid.size() + 1, 0);
+        fluidBoundary_.indices.clear();
+        return;
+    }
+    buildNeighbourList(fluid.size(), fluidBoundary_, [&](std::size_t i, auto&& push) {
+        boundaryGrid_.forEachWithin(fluid[i], boundaryPoints_, radius_, push);
+    });
+}
+
+std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) const {
+    std::vector<std::uint64_t> codes(points.size());
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < points.size(); ++i) codes[i] = fluidGrid_.mortonCode(points[i]);
+    std::vector<Index> order(points.size());
+    std::iota(order.begin(), order.end(), Index(0));
+    std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return codes[a] < codes[b]; });
+    return order;
+}
+
+NeighbourList NeighbourSearch::boundaryBoundaryList() const {
+    NeighbourList list;
+    buildNeighbourList(boundaryPoints_.size(), list, [&](std::size_t i, auto&& push) {
+        boundaryGrid_.forEachWithin(boundaryPoints_[i], boundaryPoints_, radius_, [&](Index j) {
+            if (j != i) push(j);
+        });
+    });
+    return list;
+}
+
+} // namespace spindrift

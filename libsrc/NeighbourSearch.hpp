@@ -1,0 +1,110 @@
+// Spindrift — neighbour search on a uniform grid.
+//
+// Cell size = kernel support h. The grid covers the case's domain box; particles outside it
+// are clamped into the border cells (still correct — cells become supersets — only slower),
+// so a runaway particle never makes the grid explode. Points are bucketed with a stable
+// counting sort, so neighbour order depends only on the input, never on the thread count.
+//
+// Lists are compact (CSR): for particle i, indices[offsets[i] .. offsets[i+1]) excluding i.
+// Fluid–fluid and fluid–boundary lists are rebuilt each step; the static boundary grid is
+// built once and boundary–boundary pairs are never searched during the run.
+// sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
+// the particle arrays every few steps for cache locality.
+#pragma once
+
+#include "Types.hpp"
+
+#include <vector>
+
+namespace spindrift {
+
+struct NeighbourList {
+    std::vector<std::uint32_t> offsets; // size n + 1
+    std::vector<Index> indices;
+
+    std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+    std::uint32_t count(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
+    const Index* begin(std::size_t i) const { return indices.data() + offsets[i]; }
+    const Index* end(std::size_t i) const { return indices.data() + offsets[i + 1]; }
+    std::size_t totalPairs() const { return indices.size(); }
+};
+
+class UniformGrid {
+public:
+    void setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax);
+    void build(const std::vector<Vec3>& points);
+
+    // Calls f(j) for every point j of the built set with |p − x_j| < radius (radius <= cell size).
+    template <class F>
+    void forEachWithin(const Vec3& p, const std::vector<Vec3>& points, Scalar radius, F&& f) const {
+        const Scalar r2 = radius * radius;
+        int c[3];
+        cellCoords(p, c);
+        const int zLo = dim_ == 3 ? std::max(c[2] - 1, 0) : 0;
+        const int zHi = dim_ == 3 ? std::min(c[2] + 1, dims_[2] - 1) : 0;
+        const int yLo = std::max(c[1] - 1, 0), yHi = std::min(c[1] + 1, dims_[1] - 1);
+        const int xLo = std::max(c[0] - 1, 0), xHi = std::min(c[0] + 1, dims_[0] - 1);
+        for (int z = zLo; z <= zHi; ++z)
+            for (int y = yLo; y <= yHi; ++y) {
+                const std::size_t row = (std::size_t(z) * dims_[1] + y) * dims_[0];
+                const Index first = cellStart_[row + xLo], last = cellStart_[row + xHi + 1];
+                for (Index k = first; k < last; ++k) {
+                    const Index j = sorted_[k];
+                    if ((p - points[j]).squaredNorm() < r2) f(j);
+                }
+            }
+    }
+
+    void cellCoords(const Vec3& p, int c[3]) const;
+    std::uint64_t mortonCode(const Vec3& p) const;
+    std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
+
+private:
+    Vec3 origin_ = Vec3::Zero();
+    Scalar invCell_ = 1;
+    int dim_ = 3;
+    int dims_[3] = {1, 1, 1};
+    std::vector<Index> cellStart_; // size cells + 1
+    std::vector<Index> sorted_;    // point indices bucketed by cell
+    std::vector<Index> cellOf_;    // scratch
+};
+
+class NeighbourSearch {
+public:
+    // radius = kernel support h; domain = box the particles are expected to stay in.
+    void setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax);
+    // Static boundary points: their grid is built once, here.
+    void setBoundary(const std::vector<Vec3>& boundaryPoints);
+
+    // Rebuilds fluid–fluid and fluid–boundary lists for the current fluid positions.
+    void build(const std::vector<Vec3>& fluidPoints);
+
+    // Permutation that orders points along the Z-order curve of the grid cells.
+    std::vector<Index> sortOrder(const std::vector<Vec3>& points) const;
+
+    // Boundary–boundary list (each boundary point's boundary neighbours, self excluded),
+    // computed on demand, e.g. for boundary volumes at set-up.
+    NeighbourList boundaryBoundaryList() const;
+
+    const NeighbourList& fluidNeighbours() const { return fluidFluid_; }
+    const NeighbourList& boundaryNeighbours() const { return fluidBoundary_; }
+    const UniformGrid& fluidGrid() const { return fluidGrid_; }
+    const UniformGrid& boundaryGrid() const { return boundaryGrid_; }
+    Scalar radius() const { return radius_; }
+    bool hasBoundary() const { return !boundaryPoints_.empty(); }
+
+private:
+    Scalar radius_ = 0;
+    int dim_ = 3;
+    UniformGrid fluidGrid_, boundaryGrid_;
+    std::vector<Vec3> boundaryPoints_;
+    NeighbourList fluidFluid_, fluidBoundary_;
+};
+
+// Builds a CSR list for n query points, calling query(i, push) where push(j) appends a
+// neighbour; parallel over contiguous blocks, deterministic.
+template <class Query> void buildNeighbourList(std::size_t n, NeighbourList& list, Query&& query);
+
+} // namespace spindrift
+
+#include "NeighbourSearch.tpp"

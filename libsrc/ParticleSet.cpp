@@ -1,0 +1,84 @@
+#include "ParticleSet.hpp"
+
+namespace spindrift {
+
+ParticleSet::ParticleSet(std::string name) : name_(std::move(name)) {
+    position_ = &addVector("position", {false, true});
+    velocity_ = &addVector("velocity", {true, true});
+    acceleration_ = &addVector("acceleration", {false, false});
+    density_ = &addScalar("density", {true, true});
+    pressure_ = &addScalar("pressure", {true, true});
+}
+
+void ParticleSet::resize(std::size_t n) {
+    id_.resize(n, 0);
+    for (auto& f : scalars_) f->data.resize(n, Scalar(0));
+    for (auto& f : vectors_) f->data.resize(n, Vec3::Zero());
+}
+
+std::vector<Scalar>& ParticleSet::addScalar(const std::string& name, FieldOptions options) {
+    for (auto& f : scalars_)
+        if (f->name == name) {
+            f->options.output |= options.output;
+            f->options.restart |= options.restart;
+            return f->data;
+        }
+    scalars_.push_back(std::make_unique<ScalarField>(ScalarField{name, options, {}}));
+    scalars_.back()->data.assign(size(), Scalar(0));
+    return scalars_.back()->data;
+}
+
+std::vector<Vec3>& ParticleSet::addVector(const std::string& name, FieldOptions options) {
+    for (auto& f : vectors_)
+        if (f->name == name) {
+            f->options.output |= options.output;
+            f->options.restart |= options.restart;
+            return f->data;
+        }
+    vectors_.push_back(std::make_unique<VectorField>(VectorField{name, options, {}}));
+    vectors_.back()->data.assign(size(), Vec3::Zero());
+    return vectors_.back()->data;
+}
+
+std::vector<Scalar>* ParticleSet::findScalar(const std::string& name) {
+    for (auto& f : scalars_)
+        if (f->name == name) return &f->data;
+    return nullptr;
+}
+std::vector<Vec3>* ParticleSet::findVector(const std::string& name) {
+    for (auto& f : vectors_)
+        if (f->name == name) return &f->data;
+    return nullptr;
+}
+const std::vector<Scalar>* ParticleSet::findScalar(const std::string& name) const {
+    return const_cast<ParticleSet*>(this)->findScalar(name);
+}
+const std::vector<Vec3>* ParticleSet::findVector(const std::string& name) const {
+    return const_cast<ParticleSet*>(this)->findVector(name);
+}
+bool ParticleSet::hasField(const std::string& name) const {
+    return name == "id" || findScalar(name) || findVector(name);
+}
+
+namespace {
+template <class T> void permuteVector(std::vector<T>& v, const std::vector<Index>& order) {
+    std::vector<T> out(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) out[i] = v[order[i]];
+    v.swap(out);
+}
+} // namespace
+
+void ParticleSet::permute(const std::vector<Index>& order) {
+    permuteVector(id_, order);
+    for (auto& f : scalars_) permuteVector(f->data, order);
+    for (auto& f : vectors_) permuteVector(f->data, order);
+}
+
+void ParticleSet::append(const Vec3& x, const Vec3& v, Index id) {
+    resize(size() + 1);
+    position().back() = x;
+    velocity().back() = v;
+    id_.back() = id;
+}
+
+} // namespace spindrift

@@ -1,0 +1,77 @@
+// Spindrift — inline SPH building blocks shared by the model plugins: pair loops over the
+// step's neighbour lists, summation density and the symmetric pressure gradient. Models call
+// these inside their own per-step loops (no virtual call per pair).
+#pragma once
+
+#include "SphSystem.hpp"
+
+namespace spindrift {
+
+// f(j, r_ij, r²) for every neighbour j of particle i in 'list' (positions xi of the set i
+// belongs to, xj of the neighbours' set).
+template <class F>
+inline void forEachNeighbour(const NeighbourList& list, const std::vector<Vec3>& xi,
+                             const std::vector<Vec3>& xj, std::size_t i, F&& f) {
+    const Vec3 x = xi[i];
+    for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) {
+        const Index j = *it;
+        const Vec3 rij = x - xj[j];
+        f(j, rij, rij.squaredNorm());
+    }
+}
+
+// ρ_i = m (W(0) + Σ_j W_ij) + Σ_b Ψ_b W_ib at positions x (the current or predicted ones),
+// on the step's neighbour lists.
+inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
+    const auto& kt = s.kernel;
+    const Scalar m = s.fluid.particleMass();
+    const auto& ff = s.search.fluidNeighbours();
+    const auto& fb = s.search.boundaryNeighbours();
+    const auto& xb = s.boundary.position();
+    const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
+    const std::size_t n = x.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        Scalar sum = kt.W0();
+        forEachNeighbour(ff, x, x, i, [&](Index, const Vec3&, Scalar r2) { sum += kt.W(std::sqrt(r2)); });
+        Scalar wall = 0;
+        if (psi)
+            forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3&, Scalar r2) { wall += psi[b] * kt.W(std::sqrt(r2)); });
+        rho[i] = m * sum + wall;
+    }
+}
+
+// a_i −= Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇_i W_ij  +  wall term Ψ_b (p_i/ρ_i² + p_b/ρ_b²) ∇_i W_ib,
+// with p_b = p_i, ρ_b = ρ_i when the boundary mirrors pressure (else the wall's own fields).
+inline void addSymmetricPressureAcceleration(const SphSystem& s, const std::vector<Vec3>& x,
+                                             const std::vector<Scalar>& p, const std::vector<Scalar>& rho,
+                                             std::vector<Vec3>& a) {
+    const auto& kt = s.kernel;
+    const Scalar m = s.fluid.particleMass();
+    const auto& ff = s.search.fluidNeighbours();
+    const auto& fb = s.search.boundaryNeighbours();
+    const auto& xb = s.boundary.position();
+    const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
+    const bool mirrored = s.boundaryPressureMirrored;
+    const auto& pb = s.boundary.pressure();
+    const auto& rhob = s.boundary.density();
+    const std::size_t n = x.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        const Scalar pi = p[i] / (rho[i] * rho[i]);
+        Vec3 acc = Vec3::Zero();
+        forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
+            const Scalar r = std::sqrt(r2);
+            acc -= (m * (pi + p[j] / (rho[j] * rho[j]))) * kt.gradW(rij, r);
+        });
+        if (psi)
+            forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                const Scalar r = std::sqrt(r2);
+                const Scalar pbTerm = mirrored ? pi : pb[b] / (rhob[b] * rhob[b]);
+                acc -= (psi[b] * (pi + pbTerm)) * kt.gradW(rib, r);
+            });
+        a[i] += acc;
+    }
+}
+
+} // namespace spindrift

@@ -1,0 +1,57 @@
+// Spindrift — system/controlDict time semantics (as OpenFOAM): start/end time, Δt (fixed or
+// adjusted by a stability limit and maxCo), and when to write.
+//
+//   startFrom      startTime | latestTime;      startTime 0;   endTime 0.3;
+//   deltaT         1e-4;                         adjustTimeStep yes;  maxCo 0.2;  maxDeltaT 1e-3;
+//   writeControl   timeStep | runTime | adjustableRunTime;         writeInterval 0.01;
+//
+// adjustableRunTime shortens steps so that they land exactly on write times (and endTime).
+#pragma once
+
+#include "Dictionary.hpp"
+
+#include <string>
+
+namespace spindrift {
+
+class TimeControl {
+public:
+    enum class WriteControl { TimeStep, RunTime, AdjustableRunTime };
+
+    explicit TimeControl(const Dictionary& controlDict);
+
+    // Re-reads the entries that may change during a run (endTime, writeInterval, maxCo, ...).
+    void read(const Dictionary& controlDict);
+
+    double startTime() const { return startTime_; }
+    double endTime() const { return endTime_; }
+    bool startFromLatest() const { return startFromLatest_; }
+    bool adjustTimeStep() const { return adjustTimeStep_; }
+    double maxCo() const { return maxCo_; }
+    double initialDeltaT() const { return deltaT_; }
+    WriteControl writeControl() const { return writeControl_; }
+    double writeInterval() const { return writeInterval_; }
+
+    // Sets the time the run starts from (startTime, or the latest time when restarting).
+    void begin(double time);
+
+    // Δt for the next step: 'stableDeltaT' is the stability limit (used when adjustTimeStep),
+    // never more than maxDeltaT nor 1.2× the previous step, shortened to land on the next
+    // write time (adjustableRunTime) and on endTime.
+    double nextDeltaT(double time, double stableDeltaT);
+
+    // After a step that ended at 'time' (step count 'step'): is this a write time?
+    bool writeDue(double time, long step);
+    bool finished(double time) const { return time >= endTime_ - timeTolerance_; }
+
+private:
+    double startTime_ = 0, endTime_ = 0, deltaT_ = 0, maxDeltaT_ = 0, maxCo_ = 0.2;
+    double writeInterval_ = 0;
+    bool startFromLatest_ = false, adjustTimeStep_ = false;
+    WriteControl writeControl_ = WriteControl::AdjustableRunTime;
+    double previousDeltaT_ = 0;
+    double nextWriteTime_ = 0;
+    double timeTolerance_ = 1e-12;
+};
+
+} // namespace spindrift

@@ -1,0 +1,66 @@
+// Tait equation of state (Becker & Teschner 2007; MODELS.md "Equation of state"), shared by
+// the weakly compressible pressure plugins: p = B((ρ/ρ0)^γ − 1), B = c0² ρ0 / γ.
+//
+// Dictionary keywords (read by read()): gamma (7), soundSpeed c0 [m/s] (default
+// 10·sqrt(2|g|H) from the initial fluid height H along gravity, i.e. ~1 % density variation
+// for a free fall from H), clampNegativePressure (yes: p = max(p, 0), for free surfaces).
+#pragma once
+
+#include "Dictionary.hpp"
+#include "Log.hpp"
+#include "SphSystem.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace spindrift {
+
+struct TaitEquationOfState {
+    Scalar gamma = 7;
+    Scalar soundSpeed = 0; // 0 until resolved
+    bool clampNegative = true;
+    Scalar rho0 = 1000;
+    Scalar B = 0;
+
+    void read(const Dictionary& d, Scalar restDensity) {
+        rho0 = restDensity;
+        gamma = d.getOrDefault<double>("gamma", 7.0);
+        if (!(gamma > 0)) throw InputError(d.locationOf("gamma"), "gamma must be positive", "gamma");
+        soundSpeed = d.found("soundSpeed") ? d.get<double>("soundSpeed") : 0.0;
+        if (d.found("soundSpeed") && !(soundSpeed > 0))
+            throw InputError(d.locationOf("soundSpeed"), "soundSpeed must be positive", "soundSpeed");
+        clampNegative = d.getOrDefault<bool>("clampNegativePressure", true);
+        B = soundSpeed * soundSpeed * rho0 / gamma;
+    }
+
+    // Resolves the default sound speed from the initial fluid and publishes it to the system.
+    void initialise(SphSystem& s) {
+        if (soundSpeed <= 0) {
+            const Vec3 g = s.physics.gravity;
+            const Scalar gNorm = g.norm();
+            Scalar height = 0;
+            if (gNorm > 0 && s.fluid.size() > 0) {
+                const Vec3 up = -g / gNorm;
+                Scalar lo = std::numeric_limits<Scalar>::max(), hi = -lo;
+                for (const auto& x : s.fluid.position()) {
+                    lo = std::min(lo, x.dot(up));
+                    hi = std::max(hi, x.dot(up));
+                }
+                height = hi - lo + s.physics.particleSpacing;
+            }
+            soundSpeed = height > 0 ? 10 * std::sqrt(2 * gNorm * height) : Scalar(10);
+            std::ostringstream m;
+            m << "    default: soundSpeed " << soundSpeed << " m/s (10 sqrt(2 g H), H = " << height << " m)";
+            log::info(m.str());
+        }
+        B = soundSpeed * soundSpeed * rho0 / gamma;
+        s.soundSpeed = soundSpeed;
+    }
+
+    Scalar pressure(Scalar rho) const {
+        const Scalar p = B * (std::pow(rho / rho0, gamma) - 1);
+        return clampNegative && p < 0 ? Scalar(0) : p;
+    }
+};
+
+} // namespace spindrift

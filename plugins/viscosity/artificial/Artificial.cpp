@@ -1,0 +1,70 @@
+// artificial — Monaghan (1992) artificial viscosity (MODELS.md "Viscosity"):
+// a_i = −Σ_j m_j Π_ij ∇_i W_ij,  Π_ij = −α c̄ μ_ij / ρ̄_ij for v_ij·r_ij < 0 (else 0),
+// μ_ij = h v_ij·r_ij / (r² + 0.01 h²), with h the support radius, c̄ the sound speed.
+// Walls act as particles at rest with the fluid particle's density (wallFactor scales them;
+// 0 = free slip). Pairwise antisymmetric: momentum is conserved among fluid particles.
+//
+//   viscosity { type artificial; alpha 0.05; soundSpeed 20; wallFactor 1; }
+#include "Plugin.hpp"
+#include "SphOperators.hpp"
+#include "ViscosityModel.hpp"
+
+namespace {
+using namespace spindrift;
+
+class Artificial final : public ViscosityModel {
+public:
+    explicit Artificial(const ModelContext& c)
+        : alpha_(c.dict.getOrDefault<double>("alpha", 0.05)),
+          soundSpeed_(c.dict.found("soundSpeed") ? c.dict.get<double>("soundSpeed") : 0.0),
+          wallFactor_(c.dict.getOrDefault<double>("wallFactor", 1.0)) {
+        if (alpha_ < 0) throw InputError(c.dict.locationOf("alpha"), "alpha must not be negative", "alpha");
+        soundSpeedLocation_ = c.dict.locationOf("soundSpeed");
+    }
+
+    void initialise(SphSystem& s) override {
+        if (soundSpeed_ <= 0) soundSpeed_ = s.soundSpeed;
+        if (soundSpeed_ <= 0)
+            throw InputError(soundSpeedLocation_, "artificial viscosity needs a sound speed: the pressure "
+                                                  "model has none (incompressible), so give 'soundSpeed'", "soundSpeed");
+    }
+
+    void addAcceleration(SphSystem& s, Scalar) override {
+        const auto& kt = s.kernel;
+        const Scalar m = s.fluid.particleMass(), h = kt.supportRadius(), eps = Scalar(0.01) * h * h;
+        const Scalar ac = alpha_ * soundSpeed_;
+        const auto& x = s.fluid.position();
+        const auto& v = s.fluid.velocity();
+        const auto& rho = s.fluid.density();
+        auto& a = s.fluid.acceleration();
+        const auto& xb = s.boundary.position();
+        const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
+        const Scalar wall = wallFactor_;
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            Vec3 acc = Vec3::Zero();
+            forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
+                const Scalar vr = (v[i] - v[j]).dot(rij);
+                if (vr >= 0) return;
+                const Scalar mu = h * vr / (r2 + eps);
+                const Scalar pi = -ac * mu / (Scalar(0.5) * (rho[i] + rho[j]));
+                acc -= (m * pi) * kt.gradW(rij, std::sqrt(r2));
+            });
+            if (psi && wall != 0)
+                forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                    const Scalar vr = v[i].dot(rib);
+                    if (vr >= 0) return;
+                    const Scalar pi = -ac * (h * vr / (r2 + eps)) / rho[i];
+                    acc -= (wall * psi[b] * pi) * kt.gradW(rib, std::sqrt(r2));
+                });
+            a[i] += acc;
+        }
+    }
+
+private:
+    Scalar alpha_, soundSpeed_, wallFactor_;
+    SourceLocation soundSpeedLocation_;
+};
+} // namespace
+
+SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "artificial", Artificial)

@@ -1,0 +1,86 @@
+#include "TestSupport.hpp"
+
+#include "Simulation.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+namespace spindrift::test {
+
+TempDir::TempDir(const std::string& prefix) {
+    std::random_device rd;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        auto candidate = std::filesystem::temp_directory_path() /
+                         (prefix + "-" + std::to_string(rd()));
+        if (std::filesystem::create_directory(candidate)) {
+            path_ = candidate;
+            return;
+        }
+    }
+    throw std::runtime_error("cannot create a temporary directory");
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+}
+
+std::filesystem::path TempDir::writeFile(const std::string& relative, const std::string& text) const {
+    auto file = path_ / relative;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream out(file);
+    out << text;
+    return file;
+}
+
+std::string readFile(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+} // namespace spindrift::test
+
+namespace spindrift::test {
+
+PhysicalParameters physicsFor(int dim, Scalar dx, Scalar supportFactor, Scalar rho0) {
+    PhysicalParameters p;
+    p.dimension = dim;
+    p.rho0 = rho0;
+    p.particleSpacing = dx;
+    p.supportRadius = supportFactor * dx;
+    p.gravity = Vec3::Zero();
+    return p;
+}
+
+void fillLattice(SphSystem& s, const Kernel& kernel, const Vec3& lo, const Vec3& hi) {
+    const int dim = s.physics.dimension;
+    const Scalar dx = s.physics.particleSpacing;
+    std::vector<Vec3> points;
+    const long nx = std::lround((hi[0] - lo[0]) / dx), ny = std::lround((hi[1] - lo[1]) / dx);
+    const long nz = dim == 3 ? std::lround((hi[2] - lo[2]) / dx) : 1;
+    for (long k = 0; k < nz; ++k)
+        for (long j = 0; j < ny; ++j)
+            for (long i = 0; i < nx; ++i)
+                points.emplace_back(lo[0] + (i + 0.5) * dx, lo[1] + (j + 0.5) * dx,
+                                    dim == 3 ? lo[2] + (k + 0.5) * dx : 0.0);
+    s.kernel.build(kernel);
+    s.fluid.resize(points.size());
+    s.fluid.setParticleMass(latticeParticleMass(s.kernel, s.physics));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        s.fluid.position()[i] = points[i];
+        s.fluid.density()[i] = s.physics.rho0;
+        s.fluid.id()[i] = Index(i);
+    }
+    const Scalar margin = 4 * s.physics.supportRadius;
+    Vec3 dlo = lo - Vec3::Constant(margin), dhi = hi + Vec3::Constant(margin);
+    if (dim == 2) dlo[2] = dhi[2] = 0;
+    s.search.setup(s.physics.supportRadius, dim, dlo, dhi);
+    s.search.build(s.fluid.position());
+}
+
+} // namespace spindrift::test

@@ -1,0 +1,49 @@
+// Spindrift tests — small helpers shared by the unit tests.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace spindrift::test {
+
+// A fresh empty directory under the system temp dir, removed by the destructor.
+class TempDir {
+public:
+    explicit TempDir(const std::string& prefix = "spindrift-test");
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    // Writes 'text' to path()/relative (creating parent directories) and returns its path.
+    std::filesystem::path writeFile(const std::string& relative, const std::string& text) const;
+
+private:
+    std::filesystem::path path_;
+};
+
+std::string readFile(const std::filesystem::path& file);
+
+} // namespace spindrift::test
+
+#include "ModelRegistry.hpp"
+
+namespace spindrift::test {
+
+// Physical parameters for model unit tests: spacing dx, support factor·dx, dimension dim.
+PhysicalParameters physicsFor(int dim, Scalar dx = 0.01, Scalar supportFactor = 2.6, Scalar rho0 = 1000);
+
+// Creates a model of kind Base from dictionary text such as "type cubicSpline;".
+template <class Base>
+std::unique_ptr<Base> createModel(const std::string& dictText, const PhysicalParameters& physics) {
+    static std::vector<std::unique_ptr<Dictionary>> keep; // models may keep references
+    keep.push_back(std::make_unique<Dictionary>(Dictionary::fromString(dictText, "test")));
+    return ModelRegistry::instance().create<Base>(*keep.back(), physics);
+}
+
+// Fills 'system' with fluid particles on a lattice of spacing dx in [lo, hi) (cell centres),
+// with the kernel tabulated, the lattice particle mass (density ρ0 inside the block) and the
+// neighbour search set up over a generous domain.
+void fillLattice(SphSystem& system, const Kernel& kernel, const Vec3& lo, const Vec3& hi);
+
+} // namespace spindrift::test

@@ -1,0 +1,103 @@
+// ModelRegistry: plugins by name, only the named library opened, helpful errors.
+#include "TestSupport.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace spindrift;
+
+namespace {
+
+bool loaded(const std::string& fileName) {
+    for (const auto& l : ModelRegistry::instance().loadedLibraries())
+        if (l.find(fileName) != std::string::npos) return true;
+    return false;
+}
+
+TEST(ModelRegistry, ListsEveryFoundationPluginWithoutOpeningAny) {
+    auto& r = ModelRegistry::instance();
+    auto has = [&](const std::string& kind, const std::string& name) {
+        const auto v = r.available(kind);
+        return std::find(v.begin(), v.end(), name) != v.end();
+    };
+    EXPECT_TRUE(has("kernel", "cubicSpline"));
+    EXPECT_TRUE(has("kernel", "wendlandC2"));
+    EXPECT_TRUE(has("pressure", "wcsph"));
+    EXPECT_TRUE(has("viscosity", "artificial"));
+    EXPECT_TRUE(has("viscosity", "laminar"));
+    EXPECT_TRUE(has("integrator", "symplecticEuler"));
+    EXPECT_TRUE(has("integrator", "leapfrog"));
+    EXPECT_TRUE(has("boundary", "akinci"));
+    EXPECT_TRUE(r.loadedLibraries().empty()) << "listing must not open libraries";
+}
+
+TEST(ModelRegistry, OpensOnlyTheLibraryACaseNames) {
+    auto k = test::createModel<Kernel>("type wendlandC2;", test::physicsFor(2));
+    ASSERT_NE(k, nullptr);
+    EXPECT_GT(k->W(0), 0.0);
+    EXPECT_TRUE(loaded("libspindrift_kernel_wendlandC2.so"));
+    EXPECT_FALSE(loaded("libspindrift_kernel_cubicSpline.so"));
+    EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), 1u);
+    // a second model of the same type reuses the open library
+    auto k2 = test::createModel<Kernel>("type wendlandC2;", test::physicsFor(3));
+    EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), 1u);
+}
+
+TEST(ModelRegistry, UnknownTypeListsTheValidOnes) {
+    try {
+        test::createModel<PressureModel>("type wcsp;", test::physicsFor(2));
+        FAIL() << "expected an error";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("Unknown pressure type 'wcsp'. Valid pressure types are: ("), std::string::npos) << m;
+        EXPECT_NE(m.find("wcsph"), std::string::npos) << m;
+        EXPECT_NE(m.find("did you mean 'wcsph'"), std::string::npos) << m;
+        EXPECT_NE(m.find("test:1:"), std::string::npos) << "names file and line: " << m;
+    }
+    EXPECT_TRUE(ModelRegistry::instance().loadedLibraries().empty());
+}
+
+TEST(ModelRegistry, UnknownKeywordInModelDictionaryIsAnError) {
+    try {
+        test::createModel<PressureModel>("type wcsph;\ngama 7;", test::physicsFor(2));
+        FAIL() << "expected an error";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("gama"), std::string::npos) << m;
+        EXPECT_NE(m.find("gamma"), std::string::npos) << "suggests the right keyword: " << m;
+        EXPECT_NE(m.find("test:2:"), std::string::npos) << m;
+    }
+}
+
+TEST(ModelRegistry, MissingTypeIsAnError) {
+    EXPECT_THROW(test::createModel<Integrator>("order 2;", test::physicsFor(2)), InputError);
+}
+
+TEST(ModelRegistry, UserLibraryThatIsNotAPluginIsRefused) {
+    test::TempDir dir;
+    const auto where = SourceLocation{"controlDict", 3, 1};
+    try {
+        ModelRegistry::instance().loadUserLibrary("libm.so.6", "/lib/x86_64-linux-gnu", where);
+        FAIL() << "expected an error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("not a Spindrift plugin"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(ModelRegistry::instance().loadUserLibrary("libdoesNotExist.so", dir.path(), where), InputError);
+}
+
+TEST(ModelRegistry, UserLibraryRegistersItsModel) {
+    // Load a plugin file explicitly, as `libs ("...")` in controlDict does.
+    std::string file;
+    for (const auto& dir : ModelRegistry::instance().searchPath())
+        if (std::filesystem::exists(dir / "libspindrift_integrator_leapfrog.so")) {
+            file = (dir / "libspindrift_integrator_leapfrog.so").string();
+            break;
+        }
+    ASSERT_FALSE(file.empty());
+    ModelRegistry::instance().loadUserLibrary(file, ".", {"controlDict", 1, 1});
+    EXPECT_TRUE(loaded("libspindrift_integrator_leapfrog.so"));
+    auto integrator = test::createModel<Integrator>("type leapfrog;", test::physicsFor(2));
+    EXPECT_NE(integrator, nullptr);
+    EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), 1u);
+}
+
+} // namespace

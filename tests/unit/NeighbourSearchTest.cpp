@@ -1,0 +1,118 @@
+// NeighbourSearch: same neighbours as a brute-force search, for any thread count, including
+// points outside the grid's domain (clamped into border cells).
+#include "NeighbourSearch.hpp"
+
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <random>
+#include <set>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+using namespace spindrift;
+
+namespace {
+
+std::vector<Vec3> randomPoints(std::size_t n, int dim, Scalar extent, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Scalar> u(-0.1 * extent, 1.1 * extent); // some outside the domain
+    std::vector<Vec3> p(n);
+    for (auto& x : p) x = Vec3(u(rng), u(rng), dim == 3 ? u(rng) : Scalar(0));
+    return p;
+}
+
+std::set<Index> bruteForce(const std::vector<Vec3>& pts, const Vec3& x, Scalar h, long self) {
+    std::set<Index> out;
+    for (std::size_t j = 0; j < pts.size(); ++j)
+        if (long(j) != self && (x - pts[j]).squaredNorm() < h * h) out.insert(Index(j));
+    return out;
+}
+
+class NeighbourSearchTest : public testing::TestWithParam<int> {};
+
+TEST_P(NeighbourSearchTest, MatchesBruteForce) {
+    const int dim = GetParam();
+    const Scalar h = 0.07, extent = 1.0;
+    const auto fluid = randomPoints(dim == 2 ? 3000 : 6000, dim, extent, 1);
+    const auto wall = randomPoints(1000, dim, extent, 2);
+    NeighbourSearch search;
+    Vec3 hi = Vec3::Constant(extent);
+    if (dim == 2) hi[2] = 0;
+    search.setup(h, dim, Vec3::Zero(), hi);
+    search.setBoundary(wall);
+    search.build(fluid);
+    std::size_t pairs = 0;
+    for (std::size_t i = 0; i < fluid.size(); ++i) {
+        const auto& ff = search.fluidNeighbours();
+        std::set<Index> got(ff.begin(i), ff.end(i));
+        ASSERT_EQ(got.size(), ff.count(i)) << "duplicate neighbours of " << i;
+        ASSERT_EQ(got, bruteForce(fluid, fluid[i], h, long(i))) << "fluid neighbours of " << i;
+        const auto& fb = search.boundaryNeighbours();
+        std::set<Index> gotB(fb.begin(i), fb.end(i));
+        ASSERT_EQ(gotB, bruteForce(wall, fluid[i], h, -1)) << "wall neighbours of " << i;
+        pairs += got.size();
+    }
+    EXPECT_GT(pairs, fluid.size()); // the test is not vacuous
+    const NeighbourList bb = search.boundaryBoundaryList();
+    for (std::size_t b = 0; b < wall.size(); ++b) {
+        std::set<Index> got(bb.begin(b), bb.end(b));
+        ASSERT_EQ(got, bruteForce(wall, wall[b], h, long(b)));
+    }
+}
+
+TEST_P(NeighbourSearchTest, ListsIndependentOfThreadCount) {
+#ifdef _OPENMP
+    const int dim = GetParam();
+    const auto pts = randomPoints(5000, dim, 1.0, 3);
+    NeighbourSearch search;
+    search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, dim == 3 ? 1 : 0));
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    search.build(pts);
+    const NeighbourList one = search.fluidNeighbours();
+    omp_set_num_threads(3);
+    search.build(pts);
+    const NeighbourList three = search.fluidNeighbours();
+    omp_set_num_threads(saved);
+    EXPECT_EQ(one.offsets, three.offsets);
+    EXPECT_EQ(one.indices, three.indices);
+#else
+    GTEST_SKIP() << "built without OpenMP";
+#endif
+}
+
+TEST_P(NeighbourSearchTest, SortOrderIsAPermutationAlongTheCurve) {
+    const int dim = GetParam();
+    const auto pts = randomPoints(2000, dim, 1.0, 4);
+    NeighbourSearch search;
+    search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, dim == 3 ? 1 : 0));
+    const auto order = search.sortOrder(pts);
+    std::vector<Index> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i);
+    for (std::size_t i = 1; i < order.size(); ++i)
+        ASSERT_LE(search.fluidGrid().mortonCode(pts[order[i - 1]]), search.fluidGrid().mortonCode(pts[order[i]]));
+    // locality: consecutive particles are on average much closer than random pairs
+    double consecutive = 0;
+    for (std::size_t i = 1; i < order.size(); ++i) consecutive += (pts[order[i]] - pts[order[i - 1]]).norm();
+    consecutive /= order.size() - 1;
+    EXPECT_LT(consecutive, 0.15);
+}
+
+TEST(NeighbourSearch, NonFiniteAndFarAwayPointsAreHandled) {
+    std::vector<Vec3> pts = {Vec3(0.5, 0.5, 0), Vec3(0.52, 0.5, 0), Vec3(1e9, 1e9, 0),
+                             Vec3(1e9 + 0.01, 1e9, 0), Vec3(std::nan(""), 0, 0)};
+    NeighbourSearch search;
+    search.setup(0.05, 2, Vec3::Zero(), Vec3(1, 1, 0));
+    search.build(pts);
+    const auto& l = search.fluidNeighbours();
+    EXPECT_EQ(std::vector<Index>(l.begin(0), l.end(0)), std::vector<Index>{1});
+    EXPECT_EQ(std::vector<Index>(l.begin(2), l.end(2)), std::vector<Index>{3});
+    EXPECT_EQ(l.count(4), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Dimensions, NeighbourSearchTest, testing::Values(2, 3),
+                         [](const auto& info) { return std::to_string(info.param) + "D"; });
+
+} // namespace
