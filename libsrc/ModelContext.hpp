@@ -4,6 +4,7 @@
 #include "Dictionary.hpp"
 #include "SphSystem.hpp"
 
+#include <filesystem>
 #include <memory>
 
 namespace spindrift {
@@ -12,6 +13,8 @@ struct ModelContext {
     const Dictionary& dict;            // the model's sub-dictionary, e.g. sphSchemes.pressure
     const PhysicalParameters& physics;
     const Dictionary* solution = nullptr; // sphSolution's sub-dictionary of the same name, if any
+    std::filesystem::path caseDirectory = {}; // the case (function objects write below it)
+    std::string name = {};             // the entry's name, e.g. "frontPosition" in functions { }
 };
 
 // The factory every plugin exports (see Plugin.hpp).

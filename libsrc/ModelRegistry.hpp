@@ -9,6 +9,7 @@
 #pragma once
 
 #include "BoundaryModel.hpp"
+#include "FunctionObject.hpp"
 #include "Integrator.hpp"
 #include "Kernel.hpp"
 #include "PressureModel.hpp"
@@ -27,13 +28,16 @@ template <> struct KindName<PressureModel> { static constexpr const char* value 
 template <> struct KindName<ViscosityModel> { static constexpr const char* value = "viscosity"; };
 template <> struct KindName<Integrator> { static constexpr const char* value = "integrator"; };
 template <> struct KindName<BoundaryModel> { static constexpr const char* value = "boundary"; };
+template <> struct KindName<ExtraForce> { static constexpr const char* value = "force"; };
+template <> struct KindName<FunctionObject> { static constexpr const char* value = "functionObject"; };
 
 class ModelRegistry {
 public:
     // The process-wide registry (libraries it opened stay loaded until exit).
     static ModelRegistry& instance();
 
-    static const std::vector<std::string>& kinds(); // kernel pressure viscosity integrator boundary
+    // kernel pressure viscosity integrator boundary force functionObject
+    static const std::vector<std::string>& kinds();
 
     const std::vector<std::filesystem::path>& searchPath() const { return searchPath_; }
     void prependSearchDirectory(const std::filesystem::path& dir);
@@ -51,11 +55,12 @@ public:
     // "Unknown pressure type 'pcsph'. Valid pressure types are: (...)".
     template <class Base>
     std::unique_ptr<Base> create(const Dictionary& dict, const PhysicalParameters& physics,
-                                 const Dictionary* solution = nullptr) {
+                                 const Dictionary* solution = nullptr,
+                                 const std::filesystem::path& caseDirectory = {}, const std::string& name = {}) {
         const std::string kind = KindName<Base>::value;
         const std::string type = typeOf(kind, dict);
         auto factory = reinterpret_cast<Factory<Base>*>(factoryFor(kind, type, dict));
-        ModelContext context{dict, physics, solution};
+        ModelContext context{dict, physics, solution, caseDirectory, name};
         auto model = factory(context);
         dict.checkAllKeywordsUsed();
         return model;

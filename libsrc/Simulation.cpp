@@ -62,6 +62,7 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
             registry.loadUserLibrary(lib, case_.dir, libs->where);
     }
     writeFields_ = control.getOrDefault<std::vector<std::string>>("writeFields", {});
+    const Dictionary* functions = control.findDict("functions");
     control.getOrDefault<std::string>("application", "spindrift");
     control.getOrDefault<std::string>("stopAt", "endTime");
     control.getOrDefault<int>("timePrecision", 6);
@@ -78,6 +79,11 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     if (const Dictionary* v = schemes.findDict("viscosity"))
         viscosity_ = registry.create<ViscosityModel>(*v, physics, solutionFor("viscosity"));
     integrator_ = registry.create<Integrator>(schemes.subDict("integrator"), physics);
+    if (const Dictionary* forces = schemes.findDict("forces")) {
+        for (const auto& name : forces->keywords())
+            forces_.push_back(registry.create<ExtraForce>(forces->subDict(name), physics, solutionFor(name),
+                                                          case_.dir, name));
+    }
     if (const Dictionary* ns = schemes.findDict("neighbourSearch")) {
         sortEvery_ = ns->getOrDefault<int>("sortEvery", 10);
         ns->checkAllKeywordsUsed();
@@ -100,12 +106,23 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     if (boundaryModel_) boundaryModel_->initialise(system_);
     pressure_->initialise(system_);
     if (viscosity_) viscosity_->initialise(system_);
+    for (auto& f : forces_) f->initialise(system_);
     integrator_->initialise(system_);
+    if (functions) {
+        for (const auto& name : functions->keywords())
+            functions_.push_back(registry.create<FunctionObject>(functions->subDict(name), physics, nullptr,
+                                                                 case_.dir, name));
+    }
 
     writer_ = std::make_unique<CaseWriter>(case_.dir, control.getOrDefault<int>("timePrecision", 6));
     restarted_ = time_->startFromLatest() && restartFromLatest();
     if (!restarted_) system_.time = time_->startTime();
     time_->begin(system_.time);
+    for (auto& f : functions_) f->start(system_, system_.time);
+    if (pressure_->isIterative())
+        solverPerformance_ = std::make_unique<PostProcessingFile>(
+            case_.dir, "solverPerformance", system_.time,
+            std::vector<std::string>{"iterations", "converged", "maxDensityError", "avgDensityError"});
 }
 
 Simulation::~Simulation() = default;
@@ -181,6 +198,8 @@ std::string Simulation::schemesSummary() const {
     s << "kernel " << type("kernel") << ", pressure " << type("pressure") << ", viscosity "
       << (viscosity_ ? type("viscosity") : "none") << ", integrator " << type("integrator")
       << ", boundary " << (boundaryModel_ ? type("boundary") : "none");
+    if (const Dictionary* forces = case_.sphSchemes.findDict("forces"))
+        for (const auto& name : forces->keywords()) s << ", force " << forces->subDict(name).get<std::string>("type");
     return s.str();
 }
 
@@ -194,6 +213,7 @@ void Simulation::evaluate(Scalar dt) {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < a.size(); ++i) a[i] = g;
     if (viscosity_) viscosity_->addAcceleration(s, dt);
+    for (auto& f : forces_) f->addAcceleration(s, dt);
     pressure_->addPressureAcceleration(s, dt);
 }
 
@@ -208,7 +228,8 @@ double Simulation::stableDeltaT() const {
     double dt = std::numeric_limits<double>::infinity();
     if (c0 + vMax > 0) dt = time_->maxCo() * h / (c0 + vMax);
     if (aMax > 0) dt = std::min(dt, 0.25 * std::sqrt(h / aMax));
-    const double nu = viscosity_ ? viscosity_->timeStepViscosity() : 0.0;
+    double nu = viscosity_ ? viscosity_->timeStepViscosity() : 0.0;
+    for (const auto& f : forces_) nu = std::max(nu, double(f->timeStepViscosity()));
     if (nu > 0) dt = std::min(dt, 0.125 * h * h / nu);
     return dt;
 }
@@ -283,11 +304,15 @@ RunSummary Simulation::run() {
             const SolverStats st = pressure_->lastSolve();
             iterations += st.iterations;
             ++iterativeSteps;
-            line << "  iterations " << st.iterations << (st.converged ? "" : " (not converged)");
+            line << "  iterations " << st.iterations << (st.converged ? "" : " (not converged: maxIterations reached)");
+            solverPerformance_->writeRow(s.time, {double(st.iterations), st.converged ? 1.0 : 0.0,
+                                                  st.maxDensityError, st.avgDensityError});
         }
         log::info(line.str());
 
-        if (time_->writeDue(s.time, s.step)) write();
+        const bool writeTime = time_->writeDue(s.time, s.step);
+        if (writeTime) write();
+        for (auto& f : functions_) f->execute(s, writeTime);
         if (log::stdoutIsTerminal()) {
             const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
             const double done = (s.time - startTime) / (time_->endTime() - startTime);
@@ -298,6 +323,7 @@ RunSummary Simulation::run() {
         }
     }
     log::clearProgress();
+    for (auto& f : functions_) f->end(s);
     summary.steps = s.step;
     summary.endTime = s.time;
     summary.writes = writes_;

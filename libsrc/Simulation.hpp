@@ -59,6 +59,9 @@ private:
     std::unique_ptr<Kernel> kernel_;
     std::unique_ptr<PressureModel> pressure_;
     std::unique_ptr<ViscosityModel> viscosity_;
+    std::vector<std::unique_ptr<ExtraForce>> forces_;
+    std::vector<std::unique_ptr<FunctionObject>> functions_;
+    std::unique_ptr<PostProcessingFile> solverPerformance_; // iterative pressure solvers only
     std::unique_ptr<Integrator> integrator_;
     std::unique_ptr<BoundaryModel> boundaryModel_;
     std::vector<std::string> writeFields_;

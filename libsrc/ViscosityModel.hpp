@@ -1,19 +1,25 @@
-// Spindrift — viscosity (and other non-pressure force) interface (plugins/viscosity).
-// Adds its acceleration to fluid.acceleration(); loops over neighbours itself. Runs after
-// the density is known and before the pressure model.
+// Spindrift — non-pressure forces: viscosity (plugins/viscosity, one per case in
+// sphSchemes `viscosity { }`) and further forces (plugins/forces, any number in sphSchemes
+// `forces { name { type ...; } }`, e.g. vorticity confinement, surface tension).
+// Each adds its acceleration to fluid.acceleration() and loops over neighbours itself. They run
+// after the density is known and before the pressure model, so iterative pressure solvers
+// predict with the non-pressure accelerations.
 #pragma once
 
 #include "ModelContext.hpp"
 
 namespace spindrift {
 
-class ViscosityModel {
+class ForceModel {
 public:
-    virtual ~ViscosityModel() = default;
+    virtual ~ForceModel() = default;
     virtual void initialise(SphSystem&) {}
     virtual void addAcceleration(SphSystem& system, Scalar dt) = 0;
     // Kinematic viscosity for the viscous time-step limit Δt <= 0.125 h²/ν (0 = no limit).
     virtual Scalar timeStepViscosity() const { return 0; }
 };
+
+class ViscosityModel : public ForceModel {};
+class ExtraForce : public ForceModel {};
 
 } // namespace spindrift

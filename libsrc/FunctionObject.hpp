@@ -1,0 +1,42 @@
+// Spindrift — function objects (plugins/functionObjects), OpenFOAM-style: configured in
+// controlDict `functions { name { type probes; ... } }`, executed after every step (or every
+// `executeInterval` steps), writing tabular output to
+// postProcessing/<name>/<startTime>/<name>.dat through PostProcessingFile.
+#pragma once
+
+#include "ModelContext.hpp"
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace spindrift {
+
+class FunctionObject {
+public:
+    virtual ~FunctionObject() = default;
+    // Called once after set-up, with the start time (the output folder's name).
+    virtual void start(const SphSystem&, double startTime) { (void)startTime; }
+    // Called after each step; 'writeTime' is true when the solver writes a time directory.
+    virtual void execute(const SphSystem& system, bool writeTime) = 0;
+    virtual void end(const SphSystem&) {}
+};
+
+// postProcessing/<name>/<startTimeName>/<fileName>: a '#'-header line then one row per call.
+// Rows are flushed so a crashed run keeps them; restarting appends to a new folder named after
+// the restart time, as OpenFOAM does.
+class PostProcessingFile {
+public:
+    PostProcessingFile() = default;
+    PostProcessingFile(const std::filesystem::path& caseDir, const std::string& name, double startTime,
+                       const std::vector<std::string>& columns, const std::string& fileName = "");
+    void writeRow(double time, const std::vector<double>& values);
+    const std::filesystem::path& path() const { return path_; }
+    bool isOpen() const { return out_.is_open(); }
+
+private:
+    std::filesystem::path path_;
+    std::ofstream out_;
+};
+
+} // namespace spindrift

@@ -1,0 +1,28 @@
+#include "FunctionObject.hpp"
+
+#include "CaseWriter.hpp"
+
+#include <iomanip>
+
+namespace spindrift {
+
+PostProcessingFile::PostProcessingFile(const std::filesystem::path& caseDir, const std::string& name,
+                                       double startTime, const std::vector<std::string>& columns,
+                                       const std::string& fileName) {
+    const auto dir = caseDir / "postProcessing" / name / CaseWriter::timeName(startTime);
+    std::filesystem::create_directories(dir);
+    path_ = dir / ((fileName.empty() ? name : fileName) + ".dat");
+    out_.open(path_, std::ios::trunc);
+    if (!out_) throw std::runtime_error("cannot write " + path_.string());
+    out_ << "# Time";
+    for (const auto& c : columns) out_ << '\t' << c;
+    out_ << '\n' << std::flush;
+}
+
+void PostProcessingFile::writeRow(double time, const std::vector<double>& values) {
+    out_ << std::setprecision(10) << time;
+    for (double v : values) out_ << '\t' << v;
+    out_ << '\n' << std::flush;
+}
+
+} // namespace spindrift
