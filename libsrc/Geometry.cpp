@@ -120,6 +120,26 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
         }
     }
 
+    if (const Dictionary* periodic = geometry.findDict("periodic")) {
+        for (const auto& axisName : periodic->keywords()) {
+            const int a = axisName == "x" ? 0 : axisName == "y" ? 1 : axisName == "z" ? 2 : -1;
+            if (a < 0 || a >= dim)
+                throw InputError(periodic->locationOf(axisName), "unknown periodic axis '" + axisName +
+                                 "'; valid: (x y" + std::string(dim == 3 ? " z)" : ")"), axisName);
+            const auto range = periodic->get<std::vector<double>>(axisName);
+            if (range.size() != 2 || !(range[1] > range[0]))
+                throw InputError(periodic->locationOf(axisName), "periodic axis '" + axisName +
+                                 "' needs (min max) with max > min", axisName);
+            const double cells = (range[1] - range[0]) / dx;
+            if (std::abs(cells - std::round(cells)) > 1e-6 * cells)
+                throw InputError(periodic->locationOf(axisName), "the periodic length along " + axisName +
+                                 " must be a whole number of particleSpacing", axisName);
+            out.periodic.axis[a] = true;
+            out.periodic.min[a] = Scalar(range[0]);
+            out.periodic.length[a] = Scalar(range[1] - range[0]);
+        }
+    }
+
     const Dictionary& fluid = geometry.subDict("fluid");
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);

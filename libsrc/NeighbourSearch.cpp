@@ -5,14 +5,28 @@
 
 namespace spindrift {
 
-void UniformGrid::setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax) {
+void UniformGrid::setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax,
+                        const Periodicity& periodic) {
     if (!(cellSize > 0)) throw std::invalid_argument("UniformGrid: cell size must be positive");
     dim_ = dimension;
+    periodic_ = periodic;
     origin_ = domainMin;
-    invCell_ = Scalar(1) / cellSize;
     for (int a = 0; a < 3; ++a) {
-        const double extent = std::max(double(domainMax[a] - domainMin[a]), 0.0);
-        dims_[a] = (a == 2 && dim_ == 2) ? 1 : std::max(1, int(std::ceil(extent * invCell_)) + 1);
+        invCell_[a] = Scalar(1) / cellSize;
+        if (a == 2 && dim_ == 2) {
+            dims_[a] = 1;
+        } else if (periodic.axis[a]) {
+            // whole cells of at least the support radius spanning the period exactly
+            origin_[a] = periodic.min[a];
+            dims_[a] = int(std::floor(periodic.length[a] / cellSize));
+            if (dims_[a] < 3)
+                throw std::runtime_error(std::string("the periodic length along ") + "xyz"[a] +
+                                         " must be at least 3 kernel support radii");
+            invCell_[a] = Scalar(dims_[a]) / periodic.length[a];
+        } else {
+            const double extent = std::max(double(domainMax[a] - domainMin[a]), 0.0);
+            dims_[a] = std::max(1, int(std::ceil(extent * invCell_[a])) + 1);
+        }
     }
     const double cells = double(dims_[0]) * dims_[1] * dims_[2];
     if (cells > 2e8)
@@ -24,7 +38,12 @@ void UniformGrid::setup(Scalar cellSize, int dimension, const Vec3& domainMin, c
 
 void UniformGrid::cellCoords(const Vec3& p, int c[3]) const {
     for (int a = 0; a < 3; ++a) {
-        const Scalar s = (p[a] - origin_[a]) * invCell_;
+        const Scalar s = (p[a] - origin_[a]) * invCell_[a];
+        if (periodic_.axis[a] && std::isfinite(s)) {
+            const long k = long(std::floor(s)) % dims_[a];
+            c[a] = int(k < 0 ? k + dims_[a] : k);
+            continue;
+        }
         // clamp (also maps NaN to cell 0)
         c[a] = s >= Scalar(0) ? (s < Scalar(dims_[a] - 1) ? int(s) : dims_[a] - 1) : 0;
     }
@@ -67,11 +86,13 @@ void UniformGrid::build(const std::vector<Vec3>& points) {
     for (std::size_t i = 0; i < n; ++i) sorted_[fill[cellOf_[i]]++] = Index(i);
 }
 
-void NeighbourSearch::setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax) {
+void NeighbourSearch::setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax,
+                            const Periodicity& periodic) {
     radius_ = radius;
     dim_ = dimension;
-    fluidGrid_.setup(radius, dimension, domainMin, domainMax);
-    boundaryGrid_.setup(radius, dimension, domainMin, domainMax);
+    periodic_ = periodic;
+    fluidGrid_.setup(radius, dimension, domainMin, domainMax, periodic);
+    boundaryGrid_.setup(radius, dimension, domainMin, domainMax, periodic);
 }
 
 void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
@@ -81,6 +102,8 @@ void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
 
 void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
     fluidGrid_.build(fluid);
+    const Periodicity* periodic = periodic_.any() ? &periodic_ : nullptr;
+    fluidFluid_.periodic = fluidBoundary_.periodic = periodic;
     buildNeighbourList(fluid.size(), fluidFluid_, [&](std::size_t i, auto&& push) {
         fluidGrid_.forEachWithin(fluid[i], fluid, radius_, [&](Index j) {
             if (j != i) push(j);
@@ -108,6 +131,7 @@ std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) c
 
 NeighbourList NeighbourSearch::boundaryBoundaryList() const {
     NeighbourList list;
+    list.periodic = periodic_.any() ? &periodic_ : nullptr;
     buildNeighbourList(boundaryPoints_.size(), list, [&](std::size_t i, auto&& push) {
         boundaryGrid_.forEachWithin(boundaryPoints_[i], boundaryPoints_, radius_, [&](Index j) {
             if (j != i) push(j);

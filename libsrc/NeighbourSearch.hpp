@@ -5,6 +5,10 @@
 // so a runaway particle never makes the grid explode. Points are bucketed with a stable
 // counting sort, so neighbour order depends only on the input, never on the thread count.
 //
+// Periodic axes (Periodicity): the grid wraps around them and distances use the minimum
+// image; a list built with periodicity carries a pointer to it so pair loops
+// (forEachNeighbour) apply the same minimum image — at no cost for non-periodic cases.
+//
 // Lists are compact (CSR): for particle i, indices[offsets[i] .. offsets[i+1]) excluding i.
 // Fluid–fluid and fluid–boundary lists are rebuilt each step; the static boundary grid is
 // built once and boundary–boundary pairs are never searched during the run.
@@ -14,13 +18,35 @@
 
 #include "Types.hpp"
 
+#include <cmath>
+
 #include <vector>
 
 namespace spindrift {
 
+// Periodic directions of the domain: a particle leaving at min + length re-enters at min.
+struct Periodicity {
+    bool axis[3] = {false, false, false};
+    Vec3 min = Vec3::Zero();
+    Vec3 length = Vec3::Zero();
+
+    bool any() const { return axis[0] || axis[1] || axis[2]; }
+    // r_ij → its nearest periodic image.
+    void minimumImage(Vec3& rij) const {
+        for (int a = 0; a < 3; ++a)
+            if (axis[a]) rij[a] -= length[a] * std::round(rij[a] / length[a]);
+    }
+    // Position → into [min, min + length) along periodic axes.
+    void wrap(Vec3& x) const {
+        for (int a = 0; a < 3; ++a)
+            if (axis[a]) x[a] -= length[a] * std::floor((x[a] - min[a]) / length[a]);
+    }
+};
+
 struct NeighbourList {
     std::vector<std::uint32_t> offsets; // size n + 1
     std::vector<Index> indices;
+    const Periodicity* periodic = nullptr; // set when the domain has periodic axes
 
     std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
     std::uint32_t count(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
@@ -31,7 +57,9 @@ struct NeighbourList {
 
 class UniformGrid {
 public:
-    void setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax);
+    // Periodic axes span exactly [periodic.min, periodic.min + length) with at least 3 cells.
+    void setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax,
+               const Periodicity& periodic = {});
     void build(const std::vector<Vec3>& points);
 
     // Calls f(j) for every point j of the built set with |p − x_j| < radius (radius <= cell size).
@@ -40,6 +68,10 @@ public:
         const Scalar r2 = radius * radius;
         int c[3];
         cellCoords(p, c);
+        if (periodic_.any()) {
+            forEachWithinPeriodic(p, c, points, r2, f);
+            return;
+        }
         const int zLo = dim_ == 3 ? std::max(c[2] - 1, 0) : 0;
         const int zHi = dim_ == 3 ? std::min(c[2] + 1, dims_[2] - 1) : 0;
         const int yLo = std::max(c[1] - 1, 0), yHi = std::min(c[1] + 1, dims_[1] - 1);
@@ -60,8 +92,33 @@ public:
     std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
 
 private:
+    template <class F>
+    void forEachWithinPeriodic(const Vec3& p, const int c[3], const std::vector<Vec3>& points, Scalar r2,
+                               F&& f) const {
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            const bool used = a < dim_;
+            lo[a] = !used ? 0 : periodic_.axis[a] ? c[a] - 1 : std::max(c[a] - 1, 0);
+            hi[a] = !used ? 0 : periodic_.axis[a] ? c[a] + 1 : std::min(c[a] + 1, dims_[a] - 1);
+        }
+        auto wrapped = [&](int v, int a) { return periodic_.axis[a] ? (v + dims_[a]) % dims_[a] : v; };
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int x = lo[0]; x <= hi[0]; ++x) {
+                    const std::size_t cell =
+                        (std::size_t(wrapped(z, 2)) * dims_[1] + wrapped(y, 1)) * dims_[0] + wrapped(x, 0);
+                    for (Index k = cellStart_[cell]; k < cellStart_[cell + 1]; ++k) {
+                        const Index j = sorted_[k];
+                        Vec3 d = p - points[j];
+                        periodic_.minimumImage(d);
+                        if (d.squaredNorm() < r2) f(j);
+                    }
+                }
+    }
+
     Vec3 origin_ = Vec3::Zero();
-    Scalar invCell_ = 1;
+    Vec3 invCell_ = Vec3::Ones();
+    Periodicity periodic_;
     int dim_ = 3;
     int dims_[3] = {1, 1, 1};
     std::vector<Index> cellStart_; // size cells + 1
@@ -72,7 +129,9 @@ private:
 class NeighbourSearch {
 public:
     // radius = kernel support h; domain = box the particles are expected to stay in.
-    void setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax);
+    void setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax,
+               const Periodicity& periodic = {});
+    const Periodicity& periodicity() const { return periodic_; }
     // Static boundary points: their grid is built once, here.
     void setBoundary(const std::vector<Vec3>& boundaryPoints);
 
@@ -96,6 +155,7 @@ public:
 private:
     Scalar radius_ = 0;
     int dim_ = 3;
+    Periodicity periodic_;
     UniformGrid fluidGrid_, boundaryGrid_;
     std::vector<Vec3> boundaryPoints_;
     NeighbourList fluidFluid_, fluidBoundary_;

@@ -152,12 +152,13 @@ void Simulation::buildParticles() {
     const Scalar margin = 2 * physics.supportRadius;
     domainMin_ = g.boundsMin - Vec3::Constant(margin) - Scalar(0.25) * extent;
     domainMax_ = g.boundsMax + Vec3::Constant(margin) + Scalar(0.25) * extent;
+    periodic_ = g.periodic;
     if (physics.dimension == 2) domainMin_[2] = domainMax_[2] = 0;
     // A particle beyond one more extent (and 10 h) from everything sampled has blown up.
     const Vec3 reach = extent.cwiseMax(Vec3::Constant(10 * physics.supportRadius));
     blowUpMin_ = g.boundsMin - reach;
     blowUpMax_ = g.boundsMax + reach;
-    system_.search.setup(physics.supportRadius, physics.dimension, domainMin_, domainMax_);
+    system_.search.setup(physics.supportRadius, physics.dimension, domainMin_, domainMax_, periodic_);
     if (wall.size() > 0) {
         const auto order = system_.search.sortOrder(wall.position());
         wall.permute(order);
@@ -241,7 +242,8 @@ void Simulation::checkState() const {
     const int dim = system_.physics.dimension;
     for (std::size_t i = 0; i < x.size(); ++i) {
         bool bad = !x[i].allFinite() || !v[i].allFinite();
-        for (int a = 0; a < dim && !bad; ++a) bad = x[i][a] < lo[a] || x[i][a] > hi[a];
+        for (int a = 0; a < dim && !bad; ++a)
+            bad = !periodic_.axis[a] && (x[i][a] < lo[a] || x[i][a] > hi[a]);
         if (bad) {
             std::ostringstream s;
             s << "blow-up at step " << system_.step << ", time " << system_.time << ": particle "
@@ -290,6 +292,11 @@ RunSummary Simulation::run() {
         integrator_->step(s, Scalar(dt), [&] { evaluate(Scalar(dt)); });
         s.time += dt;
         ++s.step;
+        if (periodic_.any()) {
+            auto& x = s.fluid.position();
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < x.size(); ++i) periodic_.wrap(x[i]);
+        }
         checkState();
 
         const DensityError err = densityError(s);

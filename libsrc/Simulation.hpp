@@ -68,6 +68,7 @@ private:
     int sortEvery_ = 10;
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
+    Periodicity periodic_;
     bool boundaryWritten_ = false;
     bool restarted_ = false;
     int writes_ = 0;

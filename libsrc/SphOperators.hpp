@@ -8,11 +8,21 @@
 namespace spindrift {
 
 // f(j, r_ij, r²) for every neighbour j of particle i in 'list' (positions xi of the set i
-// belongs to, xj of the neighbours' set).
+// belongs to, xj of the neighbours' set). r_ij is the nearest periodic image when the domain
+// is periodic.
 template <class F>
 inline void forEachNeighbour(const NeighbourList& list, const std::vector<Vec3>& xi,
                              const std::vector<Vec3>& xj, std::size_t i, F&& f) {
     const Vec3 x = xi[i];
+    if (list.periodic) {
+        for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) {
+            const Index j = *it;
+            Vec3 rij = x - xj[j];
+            list.periodic->minimumImage(rij);
+            f(j, rij, rij.squaredNorm());
+        }
+        return;
+    }
     for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) {
         const Index j = *it;
         const Vec3 rij = x - xj[j];

@@ -112,6 +112,40 @@ TEST(NeighbourSearch, NonFiniteAndFarAwayPointsAreHandled) {
     EXPECT_EQ(l.count(4), 0u);
 }
 
+TEST_P(NeighbourSearchTest, PeriodicAxesUseTheNearestImage) {
+    const int dim = GetParam();
+    const Scalar h = 0.09;
+    Periodicity periodic;
+    periodic.axis[0] = true; // periodic in x only; y (and z) bounded
+    periodic.min = Vec3(-0.5, 0, 0);
+    periodic.length = Vec3(1.0, 0, 0);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<Scalar> u(0, 1);
+    std::vector<Vec3> pts(dim == 2 ? 2000 : 4000);
+    for (auto& p : pts) p = Vec3(u(rng) - 0.5, u(rng), dim == 3 ? u(rng) : Scalar(0));
+    pts[0] = Vec3(-0.49, 0.5, dim == 3 ? 0.5 : 0); // neighbours across the periodic boundary
+    pts[1] = Vec3(0.49, 0.5, dim == 3 ? 0.5 : 0);
+    pts[2] = Vec3(1.505, 0.5, dim == 3 ? 0.5 : 0); // outside [min, min + L): an image of x = 0.505
+    NeighbourSearch search;
+    search.setup(h, dim, Vec3(-0.5, 0, 0), Vec3(0.5, 1, dim == 3 ? 1 : 0), periodic);
+    search.build(pts);
+    const auto& l = search.fluidNeighbours();
+    ASSERT_NE(l.periodic, nullptr);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        std::set<Index> expected;
+        for (std::size_t j = 0; j < pts.size(); ++j) {
+            Vec3 d = pts[i] - pts[j];
+            d[0] -= std::round(d[0]);
+            if (j != i && d.squaredNorm() < h * h) expected.insert(Index(j));
+        }
+        ASSERT_EQ(std::set<Index>(l.begin(i), l.end(i)), expected) << "particle " << i;
+    }
+    EXPECT_TRUE(std::set<Index>(l.begin(0), l.end(0)).count(1)) << "pairs across the boundary are found";
+    Vec3 x = pts[2];
+    periodic.wrap(x);
+    EXPECT_NEAR(x[0], -0.495, 1e-12);
+}
+
 INSTANTIATE_TEST_SUITE_P(Dimensions, NeighbourSearchTest, testing::Values(2, 3),
                          [](const auto& info) { return std::to_string(info.param) + "D"; });
 
