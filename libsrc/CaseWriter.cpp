@@ -9,6 +9,10 @@
 // field data "particleMass" (1 value, same type) so that a restart gets the mass back.
 #include "CaseWriter.hpp"
 
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
@@ -367,8 +371,23 @@ void CaseWriter::rebuildCollection() {
     writeCollection();
 }
 
+namespace {
+// Test hook: SPINDRIFT_FAULT_INJECTION=killDuringWrite:N kills the process during write N.
+void maybeKillDuringWrite() {
+    static int writes = 0;
+    static const int killAt = [] {
+        const char* v = std::getenv("SPINDRIFT_FAULT_INJECTION");
+        const std::string prefix = "killDuringWrite:";
+        if (!v || std::string(v).rfind(prefix, 0) != 0) return -1;
+        return std::atoi(v + prefix.size());
+    }();
+    if (++writes == killAt) ::raise(SIGKILL);
+}
+} // namespace
+
 void CaseWriter::write(double time, const ParticleSet& fluid, const ParticleSet* boundary,
-                       const std::vector<std::string>& fieldNames) {
+                       const std::vector<std::string>& fieldNames,
+                       const std::vector<std::pair<std::string, std::string>>& extraFiles) {
     if (!scanned_) scan();
     const std::string name = timeName(time, precision_);
     const fs::path finalDir = caseDir_ / name;
@@ -395,8 +414,24 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const ParticleSet*
             fs::copy_file(finalDir / "boundary.vtp", tmpDir / "boundary.vtp");
             hasBoundary = true;
         }
-        if (fs::exists(finalDir, ec)) fs::remove_all(finalDir);
-        fs::rename(tmpDir, finalDir);
+        for (const auto& [relative, content] : extraFiles) {
+            const fs::path file = tmpDir / relative;
+            fs::create_directories(file.parent_path());
+            std::ofstream out(file);
+            out << content;
+            if (!out.flush()) throw std::runtime_error("cannot write '" + file.string() + "'");
+        }
+        maybeKillDuringWrite();
+        if (fs::exists(finalDir, ec)) {
+            // keep the old directory until the new one is in place
+            const fs::path old = caseDir_ / ("." + name + ".old");
+            fs::remove_all(old, ec);
+            fs::rename(finalDir, old);
+            fs::rename(tmpDir, finalDir);
+            fs::remove_all(old, ec);
+        } else {
+            fs::rename(tmpDir, finalDir);
+        }
     } catch (const fs::filesystem_error& e) {
         fs::remove_all(tmpDir, ec);
         throw std::runtime_error("cannot write time directory '" + finalDir.string() +

@@ -6,6 +6,8 @@
 // A time directory is written under a temporary name (".<time>.tmp") and renamed when
 // complete; the .pvd is written to a temporary file and renamed. So a crash never leaves a
 // half-written time directory visible, and the .pvd lists only complete ones.
+// Fault injection for tests: with SPINDRIFT_FAULT_INJECTION=killDuringWrite:N in the
+// environment, the process kills itself (SIGKILL) in the middle of its N-th write.
 #pragma once
 
 #include "ParticleSet.hpp"
@@ -32,8 +34,11 @@ public:
     // from every later time: pass boundary = nullptr and the .pvd points to the last
     // boundary.vtp written. 'fieldNames': arrays to write besides 'id' (empty = every field
     // flagged output); fields flagged restart are always written.
+    // 'extraFiles': further files written into the time directory before it is renamed
+    // (relative path, content), e.g. uniform/time with the exact time and step for restarts.
     void write(double time, const ParticleSet& fluid, const ParticleSet* boundary,
-               const std::vector<std::string>& fieldNames = {});
+               const std::vector<std::string>& fieldNames = {},
+               const std::vector<std::pair<std::string, std::string>>& extraFiles = {});
 
     // Complete time directories present in the case (numeric name holding fluid.vtp),
     // sorted by time.

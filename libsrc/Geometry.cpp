@@ -55,6 +55,7 @@ int faceIndex(const std::string& face) {
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
     SampledGeometry out;
     std::vector<Box> solids;
+    std::vector<std::pair<std::string, Box>> containers;
 
     if (const Dictionary* walls = geometry.findDict("walls")) {
         for (const auto& name : walls->keywords()) {
@@ -66,6 +67,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
             const Scalar L = layers * dx;
             const std::size_t before = out.wallPositions.size();
             if (type == "container") {
+                containers.emplace_back(name, box);
                 bool open[6] = {false, false, false, false, false, false};
                 for (const auto& face : w.getOrDefault<std::vector<std::string>>("open", {})) {
                     const int f = faceIndex(face);
@@ -145,6 +147,20 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
         const Dictionary& f = fluid.subDict(name);
         f.getWord("type", {"box"});
         const Box box = readBox(f, dim);
+        if (!containers.empty()) {
+            const Scalar tol = Scalar(1e-9) + Scalar(1e-6) * dx;
+            bool inside = false;
+            for (const auto& [wallName, c] : containers)
+                inside = inside || (c.contains(box.min, dim, tol) && c.contains(box.max, dim, tol));
+            if (!inside) {
+                std::ostringstream s;
+                s << "fluid block '" << name << "' lies outside every wall: it must fit inside a container (";
+                for (const auto& [wallName, c] : containers)
+                    s << wallName << " spans (" << c.min.head(dim).transpose() << ") to (" << c.max.head(dim).transpose() << ") ";
+                s << ")";
+                throw InputError(f.where(), s.str());
+            }
+        }
         Vec3 velocity = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
         if (dim == 2) velocity[2] = 0;
         const std::size_t before = out.fluidPositions.size();

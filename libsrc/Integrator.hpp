@@ -19,6 +19,9 @@ public:
     using Evaluate = std::function<void()>;
     virtual ~Integrator() = default;
     virtual void initialise(SphSystem&) {}
+    // The state (every restart field, system.step and system.time) was just read from a time
+    // directory: restore any non-field state so the run continues as if never interrupted.
+    virtual void restarted(SphSystem&) {}
     virtual void step(SphSystem& system, Scalar dt, const Evaluate& evaluate) = 0;
 };
 

@@ -5,7 +5,9 @@ namespace spindrift {
 ParticleSet::ParticleSet(std::string name) : name_(std::move(name)) {
     position_ = &addVector("position", {false, true});
     velocity_ = &addVector("velocity", {true, true});
-    acceleration_ = &addVector("acceleration", {false, false});
+    // acceleration is restart data: the first step after a restart needs the previous step's
+    // accelerations (time-step limit, leapfrog) to continue bit for bit
+    acceleration_ = &addVector("acceleration", {false, true});
     density_ = &addScalar("density", {true, true});
     pressure_ = &addScalar("pressure", {true, true});
 }
@@ -58,6 +60,13 @@ const std::vector<Vec3>* ParticleSet::findVector(const std::string& name) const 
 }
 bool ParticleSet::hasField(const std::string& name) const {
     return name == "id" || findScalar(name) || findVector(name);
+}
+
+void ParticleSet::copyDataFrom(const ParticleSet& other) {
+    particleMass_ = other.particleMass_;
+    id_ = other.id_;
+    for (const auto& f : other.scalars_) addScalar(f->name, f->options) = f->data;
+    for (const auto& f : other.vectors_) addVector(f->name, f->options) = f->data;
 }
 
 namespace {

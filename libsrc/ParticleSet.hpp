@@ -72,6 +72,10 @@ public:
     const std::vector<std::unique_ptr<ScalarField>>& scalarFields() const { return scalars_; }
     const std::vector<std::unique_ptr<VectorField>>& vectorFields() const { return vectors_; }
 
+    // Copies every field's data from 'other', which must have the same fields (a snapshot of
+    // this set taken earlier); reuses the allocated storage.
+    void copyDataFrom(const ParticleSet& other);
+
     // Reorders every field: new[i] = old[order[i]].
     void permute(const std::vector<Index>& order);
     // Appends one particle (all fields zero except position, velocity and id).

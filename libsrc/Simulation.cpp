@@ -3,7 +3,10 @@
 #include "Geometry.hpp"
 #include "Log.hpp"
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
+#include <fstream>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -61,12 +64,9 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
         for (const auto& lib : control.get<std::vector<std::string>>("libs"))
             registry.loadUserLibrary(lib, case_.dir, libs->where);
     }
-    writeFields_ = control.getOrDefault<std::vector<std::string>>("writeFields", {});
     const Dictionary* functions = control.findDict("functions");
-    control.getOrDefault<std::string>("application", "spindrift");
-    control.getOrDefault<std::string>("stopAt", "endTime");
-    control.getOrDefault<int>("timePrecision", 6);
-    control.checkAllKeywordsUsed();
+    readRunControls(control);
+    checkWritable();
 
     system_.physics = readPhysicalParameters(case_.fluidProperties);
     const auto& physics = system_.physics;
@@ -117,7 +117,8 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     writer_ = std::make_unique<CaseWriter>(case_.dir, control.getOrDefault<int>("timePrecision", 6));
     restarted_ = time_->startFromLatest() && restartFromLatest();
     if (!restarted_) system_.time = time_->startTime();
-    time_->begin(system_.time);
+    time_->begin(system_.time, lastDeltaT_);
+    if (restarted_) integrator_->restarted(system_);
     for (auto& f : functions_) f->start(system_, system_.time);
     if (pressure_->isIterative())
         solverPerformance_ = std::make_unique<PostProcessingFile>(
@@ -166,6 +167,69 @@ void Simulation::buildParticles() {
     }
 }
 
+void Simulation::readRunControls(const Dictionary& control) {
+    writeFields_ = control.getOrDefault<std::vector<std::string>>("writeFields", {});
+    reduceDeltaTOnBlowUp_ = control.getWordOrDefault("onBlowUp", {"stop", "reduceDeltaT"}, "stop") == "reduceDeltaT";
+    blowUpRetries_ = control.getOrDefault<int>("blowUpRetries", 5);
+    blowUpDensityError_ = control.getOrDefault<double>("blowUpDensityError", 0.2);
+    if (!(blowUpDensityError_ > 0))
+        throw InputError(control.locationOf("blowUpDensityError"), "blowUpDensityError must be positive",
+                         "blowUpDensityError");
+    runTimeModifiable_ = control.getOrDefault<bool>("runTimeModifiable", true);
+    control.getOrDefault<std::string>("application", "spindrift");
+    control.getOrDefault<std::string>("stopAt", "endTime");
+    control.getOrDefault<int>("timePrecision", 6);
+    control.markUsed("libs");
+    control.markUsed("functions");
+    control.checkAllKeywordsUsed();
+    std::error_code ec;
+    controlDictTime_ = fs::last_write_time(case_.dir / "system/controlDict", ec);
+}
+
+void Simulation::rereadControlDictIfChanged() {
+    if (!runTimeModifiable_) return;
+    std::error_code ec;
+    const fs::path file = case_.dir / "system/controlDict";
+    const auto stamp = fs::last_write_time(file, ec);
+    if (ec || stamp == controlDictTime_) return;
+    controlDictTime_ = stamp;
+    try {
+        Dictionary control = Dictionary::fromFile(file);
+        TimeControl updated(control);
+        readRunControls(control);
+        const double previous = time_->previousDeltaT();
+        *time_ = updated;
+        time_->setPreviousDeltaT(previous);
+        time_->scheduleNextWrite(system_.time);
+        case_.controlDict = std::move(control);
+        log::info("Re-read system/controlDict (endTime " + std::to_string(time_->endTime()) + ")");
+    } catch (const InputError& e) {
+        log::warning(std::string("system/controlDict changed but cannot be used, keeping the previous settings: ") +
+                     e.what());
+    }
+}
+
+void Simulation::checkWritable() const {
+    const fs::path probe = case_.dir / ".spindrift-write-test";
+    std::ofstream out(probe);
+    if (!out || !(out << "x").flush())
+        throw InputError({case_.dir.string(), 0, 0}, "case directory '" + case_.dir.string() +
+                                                         "' is not writable (results go there)");
+    out.close();
+    std::error_code ec;
+    fs::remove(probe, ec);
+}
+
+std::string Simulation::timeFile() const {
+    std::ostringstream s;
+    s << std::setprecision(17) << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+      << "    class       dictionary;\n    object      time;\n}\n\n"
+      << "value       " << system_.time << ";\n"
+      << "index       " << system_.step << ";\n"
+      << "deltaT      " << lastDeltaT_ << ";\n";
+    return s.str();
+}
+
 bool Simulation::restartFromLatest() {
     const auto times = writer_->existingTimes();
     if (times.empty()) {
@@ -185,8 +249,18 @@ bool Simulation::restartFromLatest() {
         if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
     fluid.position() = saved.position();
     system_.time = time;
+    lastDeltaT_ = 0;
+    // exact time, step index and last Δt (time directories written by older versions lack it)
+    const fs::path timeFilePath = case_.dir / name / "uniform/time";
+    if (fs::exists(timeFilePath)) {
+        const Dictionary t = Dictionary::fromFile(timeFilePath);
+        system_.time = t.get<double>("value");
+        system_.step = t.get<long>("index");
+        lastDeltaT_ = t.get<double>("deltaT");
+    }
     boundaryWritten_ = true; // static walls were written at the first time
-    log::info("Restarting from time " + name + " (" + std::to_string(saved.size()) + " particles)");
+    log::info("Restarting from time " + name + " (step " + std::to_string(system_.step) + ", " +
+              std::to_string(saved.size()) + " particles)");
     return true;
 }
 
@@ -235,24 +309,48 @@ double Simulation::stableDeltaT() const {
     return dt;
 }
 
-void Simulation::checkState() const {
-    const auto& x = system_.fluid.position();
-    const auto& v = system_.fluid.velocity();
-    const Vec3 lo = blowUpMin_, hi = blowUpMax_;
+std::string Simulation::findBlowUp(bool& densityOnly) const {
+    const auto& f = system_.fluid;
+    const auto& x = f.position();
+    const auto& v = f.velocity();
+    const auto& rho = f.density();
+    const auto& p = f.pressure();
+    const auto& a = f.acceleration();
     const int dim = system_.physics.dimension;
+    const double rho0 = system_.physics.rho0;
+    // worst particle: not finite > far outside > largest density error
+    long worst = -1;
+    int worstKind = 0; // 3 not finite, 2 outside, 1 density
+    double worstDensity = blowUpDensityError_;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        bool bad = !x[i].allFinite() || !v[i].allFinite();
-        for (int a = 0; a < dim && !bad; ++a)
-            bad = !periodic_.axis[a] && (x[i][a] < lo[a] || x[i][a] > hi[a]);
-        if (bad) {
-            std::ostringstream s;
-            s << "blow-up at step " << system_.step << ", time " << system_.time << ": particle "
-              << system_.fluid.id()[i] << " at (" << x[i].transpose() << ") with velocity ("
-              << v[i].transpose() << ") is " << (x[i].allFinite() ? "far outside the domain" : "not finite")
-              << "; try a smaller deltaT or maxCo";
-            throw std::runtime_error(s.str());
+        if (!x[i].allFinite() || !v[i].allFinite() || !a[i].allFinite() || !std::isfinite(rho[i]) ||
+            !std::isfinite(p[i])) {
+            worst = long(i);
+            worstKind = 3;
+            break;
+        }
+        if (worstKind < 2)
+            for (int d = 0; d < dim; ++d)
+                if (!periodic_.axis[d] && (x[i][d] < blowUpMin_[d] || x[i][d] > blowUpMax_[d])) {
+                    worst = long(i);
+                    worstKind = 2;
+                }
+        if (worstKind < 2 && (rho[i] - rho0) / rho0 > worstDensity) {
+            worst = long(i);
+            worstKind = 1;
+            worstDensity = (rho[i] - rho0) / rho0;
         }
     }
+    densityOnly = worstKind == 1;
+    if (worst < 0) return {};
+    const std::size_t i = std::size_t(worst);
+    std::ostringstream s;
+    s << std::setprecision(6) << "blow-up at step " << system_.step << ", time " << system_.time << ": particle "
+      << f.id()[i] << " at (" << x[i].transpose() << ") with velocity (" << v[i].transpose() << ") ";
+    if (worstKind == 3) s << "has a value that is not finite (density " << rho[i] << ", pressure " << p[i] << ")";
+    else if (worstKind == 2) s << "is far outside the domain";
+    else s << "has a density error of " << 100 * worstDensity << "% (blowUpDensityError " << 100 * blowUpDensityError_ << "%)";
+    return s.str();
 }
 
 void Simulation::write() {
@@ -261,7 +359,7 @@ void Simulation::write() {
         wall = &system_.boundary;
         boundaryWritten_ = true;
     }
-    writer_->write(system_.time, system_.fluid, wall, writeFields_);
+    writer_->write(system_.time, system_.fluid, wall, writeFields_, {{"uniform/time", timeFile()}});
     ++writes_;
 }
 
@@ -271,33 +369,107 @@ void Simulation::writeInitialState() {
     write();
 }
 
+namespace {
+std::atomic<int> pendingSignal{0};
+extern "C" void onStopSignal(int signal) { pendingSignal.store(signal); }
+
+const char* signalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "signal"; }
+
+// Installs SIGINT/SIGTERM handlers for the life of a run, restoring the previous ones after.
+struct StopSignals {
+    using Handler = void (*)(int);
+    Handler previousInt, previousTerm;
+    StopSignals() {
+        pendingSignal.store(0);
+        previousInt = std::signal(SIGINT, onStopSignal);
+        previousTerm = std::signal(SIGTERM, onStopSignal);
+    }
+    ~StopSignals() {
+        std::signal(SIGINT, previousInt);
+        std::signal(SIGTERM, previousTerm);
+    }
+};
+} // namespace
+
 RunSummary Simulation::run() {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
+    StopSignals signals;
     auto& s = system_;
     RunSummary summary;
     summary.fluidParticles = s.fluid.size();
     summary.boundaryParticles = s.boundary.size();
 
     writer_->rebuildCollection();
-    evaluate(Scalar(time_->initialDeltaT()));
-    if (!restarted_) write();
+    if (!restarted_) {
+        evaluate(Scalar(time_->initialDeltaT()));
+        write();
+    }
 
     const double startTime = s.time;
+    const long startStep = s.step;
     long iterations = 0, iterativeSteps = 0;
+    // The states before the last two steps. A density error shows in the evaluation of the
+    // step after the one that caused it, so such a blow-up rolls back two steps.
+    struct Snapshot {
+        ParticleSet fluid;
+        double time = 0, lastDeltaT = 0, dtTaken = 0;
+        long step = 0;
+        bool valid = false;
+    };
+    Snapshot previous{ParticleSet(s.fluid.name())}, last{ParticleSet(s.fluid.name())};
+    int retries = 0, stepsSinceRetry = 0;
+    bool keepPrevious = false; // after going back one step, 'previous' is still the step before
+    double dtCap = std::numeric_limits<double>::infinity();
     log::info("\nStarting time loop\n");
     while (!time_->finished(s.time)) {
         if (sortEvery_ > 0 && s.step % sortEvery_ == 0) s.fluid.permute(s.search.sortOrder(s.fluid.position()));
-        const double dt = time_->nextDeltaT(s.time, stableDeltaT());
+        const double dt = std::min(time_->nextDeltaT(s.time, stableDeltaT()), dtCap);
+        if (!keepPrevious) std::swap(previous, last);
+        keepPrevious = false;
+        last.fluid.copyDataFrom(s.fluid);
+        last.time = s.time;
+        last.step = s.step;
+        last.lastDeltaT = lastDeltaT_;
+        last.dtTaken = dt;
+        last.valid = true;
+
         integrator_->step(s, Scalar(dt), [&] { evaluate(Scalar(dt)); });
-        s.time += dt;
+        s.time = last.time + dt;
         ++s.step;
         if (periodic_.any()) {
             auto& x = s.fluid.position();
 #pragma omp parallel for schedule(static)
             for (std::size_t i = 0; i < x.size(); ++i) periodic_.wrap(x[i]);
         }
-        checkState();
+        bool densityBlowUp = false;
+        const std::string blowUp = findBlowUp(densityBlowUp);
+        if (!blowUp.empty()) {
+            const bool twoBack = densityBlowUp && previous.valid;
+            Snapshot& good = twoBack ? previous : last;
+            s.fluid.copyDataFrom(good.fluid);
+            s.time = good.time;
+            s.step = good.step;
+            lastDeltaT_ = good.lastDeltaT;
+            if (twoBack) previous.valid = last.valid = false;
+            keepPrevious = !twoBack;
+            if (reduceDeltaTOnBlowUp_ && retries < blowUpRetries_) {
+                ++retries;
+                stepsSinceRetry = 0;
+                dtCap = 0.5 * good.dtTaken;
+                time_->setPreviousDeltaT(dtCap);
+                log::warning(blowUp + "; going back to time " + CaseWriter::timeName(good.time) +
+                             " and retrying with deltaT " + std::to_string(dtCap));
+                continue;
+            }
+            write(); // the last good state, to look at in ParaView
+            throw std::runtime_error(blowUp + ". The last good state (time " + CaseWriter::timeName(good.time) +
+                                     ") is written to " + (case_.dir / CaseWriter::timeName(good.time)).string() +
+                                     "; try a smaller deltaT or maxCo, or onBlowUp reduceDeltaT;");
+        }
+        lastDeltaT_ = dt;
+        if (++stepsSinceRetry >= 2) retries = 0; // the retried steps are known good
+        dtCap *= 1.2;                             // and Δt may grow back gradually
 
         const DensityError err = densityError(s);
         summary.maxDensityError = std::max(summary.maxDensityError, err.max);
@@ -317,9 +489,18 @@ RunSummary Simulation::run() {
         }
         log::info(line.str());
 
-        const bool writeTime = time_->writeDue(s.time, s.step);
+        const int signal = pendingSignal.load();
+        const bool writeTime = time_->writeDue(s.time, s.step) || signal != 0;
         if (writeTime) write();
         for (auto& f : functions_) f->execute(s, writeTime);
+        if (signal != 0) {
+            log::clearProgress();
+            log::info(std::string("\n") + signalName(signal) + " received: wrote time " + CaseWriter::timeName(s.time) +
+                      " and stopped. Continue with 'startFrom latestTime;' in system/controlDict.");
+            summary.interrupted = true;
+            break;
+        }
+        rereadControlDictIfChanged();
         if (log::stdoutIsTerminal()) {
             const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
             const double done = (s.time - startTime) / (time_->endTime() - startTime);
@@ -331,7 +512,7 @@ RunSummary Simulation::run() {
     }
     log::clearProgress();
     for (auto& f : functions_) f->end(s);
-    summary.steps = s.step;
+    summary.steps = s.step - startStep;
     summary.endTime = s.time;
     summary.writes = writes_;
     summary.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -13,7 +13,8 @@
 namespace spindrift {
 
 struct RunSummary {
-    long steps = 0;
+    long steps = 0;                 // steps taken in this run (not counting those before a restart)
+    bool interrupted = false;       // stopped by SIGINT/SIGTERM (state written)
     double endTime = 0;
     double wallSeconds = 0;
     std::size_t fluidParticles = 0, boundaryParticles = 0;
@@ -47,10 +48,16 @@ public:
     double stableDeltaT() const;
 
 private:
+    void readRunControls(const Dictionary& control);
+    void rereadControlDictIfChanged();
     void buildParticles();
     bool restartFromLatest();
     void write();
-    void checkState() const;
+    std::string timeFile() const;
+    // Describes the worst problem of the current state (empty when healthy); 'densityOnly'
+    // tells that it is a density error (measured at the state before the last step).
+    std::string findBlowUp(bool& densityOnly) const;
+    void checkWritable() const;
 
     Case case_;
     SphSystem system_;
@@ -66,6 +73,12 @@ private:
     std::unique_ptr<BoundaryModel> boundaryModel_;
     std::vector<std::string> writeFields_;
     int sortEvery_ = 10;
+    bool reduceDeltaTOnBlowUp_ = false;
+    int blowUpRetries_ = 5;
+    double blowUpDensityError_ = 0.2;
+    bool runTimeModifiable_ = true;
+    std::filesystem::file_time_type controlDictTime_;
+    double lastDeltaT_ = 0;
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
     Periodicity periodic_;

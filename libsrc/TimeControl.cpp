@@ -37,8 +37,12 @@ void TimeControl::read(const Dictionary& d) {
     timeTolerance_ = 1e-9 * std::max({std::abs(endTime_), std::abs(startTime_), 1e-3});
 }
 
-void TimeControl::begin(double time) {
-    previousDeltaT_ = deltaT_;
+void TimeControl::begin(double time, double previousDeltaT) {
+    previousDeltaT_ = previousDeltaT > 0 ? previousDeltaT : deltaT_;
+    scheduleNextWrite(time);
+}
+
+void TimeControl::scheduleNextWrite(double time) {
     if (writeControl_ != WriteControl::TimeStep) {
         // next multiple of writeInterval after 'time'
         const double k = std::floor((time - startTime_) / writeInterval_ + 1e-9) + 1;
@@ -67,7 +71,7 @@ double TimeControl::nextDeltaT(double time, double stableDeltaT) {
 bool TimeControl::writeDue(double time, long step) {
     if (writeControl_ == WriteControl::TimeStep) return step % long(writeInterval_) == 0;
     if (time >= nextWriteTime_ - timeTolerance_) {
-        while (nextWriteTime_ <= time + timeTolerance_) nextWriteTime_ += writeInterval_;
+        scheduleNextWrite(time); // a function of the time only, so a restart continues identically
         return true;
     }
     return false;

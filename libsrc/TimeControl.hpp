@@ -32,8 +32,14 @@ public:
     WriteControl writeControl() const { return writeControl_; }
     double writeInterval() const { return writeInterval_; }
 
-    // Sets the time the run starts from (startTime, or the latest time when restarting).
-    void begin(double time);
+    // Sets the time the run starts from (startTime, or the latest time when restarting) and
+    // the previous step's Δt (for the growth limit; 0 = the initial deltaT).
+    void begin(double time, double previousDeltaT = 0);
+    // Recomputes the next write time after the write settings changed during a run.
+    void scheduleNextWrite(double time);
+    // The step actually taken was shorter (a retried step): limits the next growth.
+    void setPreviousDeltaT(double dt) { previousDeltaT_ = dt; }
+    double previousDeltaT() const { return previousDeltaT_; }
 
     // Δt for the next step: 'stableDeltaT' is the stability limit (used when adjustTimeStep),
     // never more than maxDeltaT nor 1.2× the previous step, shortened to land on the next

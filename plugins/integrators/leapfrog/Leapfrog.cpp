@@ -12,6 +12,10 @@ class Leapfrog final : public Integrator {
 public:
     explicit Leapfrog(const ModelContext&) {}
 
+    // After step 0 the accelerations at the current state were computed at the end of the
+    // previous step (with the half-step velocities) and restored from the time directory.
+    void restarted(SphSystem& s) override { haveAcceleration_ = s.step > 0; }
+
     void step(SphSystem& s, Scalar dt, const Evaluate& evaluate) override {
         if (!haveAcceleration_) evaluate();
         auto& x = s.fluid.position();

@@ -1,0 +1,153 @@
+// Restarts continue bit for bit: a run 0 → T equals 0 → T/2 plus `startFrom latestTime`
+// T/2 → T, for every integrator and pressure model found on the plugin path, and whatever the
+// thread count. Blow-ups stop with a message and the last good state written; onBlowUp
+// reduceDeltaT retries.
+#include "Log.hpp"
+#include "Simulation.hpp"
+#include "TestSupport.hpp"
+
+#include <gtest/gtest.h>
+#include <fstream>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+using namespace spindrift;
+namespace fs = std::filesystem;
+
+namespace {
+
+void setThreads(int n) {
+#ifdef _OPENMP
+    omp_set_num_threads(n);
+#else
+    (void)n;
+#endif
+}
+
+void editDictionary(const fs::path& file, const std::vector<std::pair<std::string, std::string>>& entries) {
+    Dictionary d = Dictionary::fromFile(file);
+    for (const auto& [key, value] : entries) d.set(key, value);
+    std::ofstream(file) << d.toString();
+}
+
+// A small dam break (about 450 particles) with the given integrator and pressure model.
+fs::path makeCase(const fs::path& dir, const std::string& integrator, const std::string& pressure, double endTime) {
+    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/damBreak2D", dir, fs::copy_options::recursive);
+    editDictionary(dir / "constant/fluidProperties", {{"particleSpacing", "0.0047625"}}); // a/12
+    editDictionary(dir / "system/controlDict", {{"endTime", std::to_string(endTime)}, {"writeInterval", "0.005"},
+                                                 {"maxCo", "0.1"}});
+    editDictionary(dir / "system/sphSchemes",
+                   {{"integrator", "{ type " + integrator + "; }"}, {"pressure", "{ type " + pressure + "; }"},
+                    {"viscosity", "{ type laminar; }"}}); // needs no sound speed: works with every solver
+    return dir;
+}
+
+ParticleSet finalState(const fs::path& caseDir) {
+    CaseWriter writer(caseDir);
+    const auto times = writer.existingTimes();
+    return readVtp(caseDir / times.back().second / "fluid.vtp");
+}
+
+struct Combination {
+    std::string integrator, pressure;
+};
+void PrintTo(const Combination& c, std::ostream* os) { *os << c.integrator << " + " << c.pressure; }
+
+std::vector<Combination> combinations() {
+    std::vector<Combination> out;
+    auto& registry = ModelRegistry::instance();
+    for (const auto& i : registry.available("integrator"))
+        for (const auto& p : registry.available("pressure")) out.push_back({i, p});
+    return out;
+}
+
+class RestartTest : public testing::TestWithParam<Combination> {};
+
+TEST_P(RestartTest, ContinuesBitForBitWithAnyThreadCount) {
+    log::setQuiet(true);
+    const auto& [integrator, pressure] = GetParam();
+    test::TempDir tmp;
+    const double T = 0.01;
+    // uninterrupted, one thread
+    const fs::path whole = makeCase(tmp.path() / "whole", integrator, pressure, T);
+    setThreads(1);
+    {
+        Simulation sim(whole);
+        sim.run();
+    }
+    // first half, then a restart, with two threads
+    const fs::path split = makeCase(tmp.path() / "split", integrator, pressure, T / 2);
+    setThreads(2);
+    long firstSteps = 0;
+    {
+        Simulation sim(split);
+        firstSteps = sim.run().steps;
+    }
+    editDictionary(split / "system/controlDict", {{"startFrom", "latestTime"}, {"endTime", std::to_string(T)}});
+    {
+        Simulation sim(split);
+        EXPECT_EQ(sim.system().step, firstSteps) << "the step index is restored";
+        sim.run();
+    }
+    setThreads(1);
+
+    const ParticleSet a = finalState(whole), b = finalState(split);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_GT(a.size(), 100u);
+    EXPECT_EQ(a.id(), b.id());
+    EXPECT_EQ(a.position(), b.position()) << "positions differ";
+    EXPECT_EQ(a.velocity(), b.velocity()) << "velocities differ";
+    EXPECT_EQ(a.density(), b.density());
+    EXPECT_EQ(a.pressure(), b.pressure());
+    EXPECT_EQ(CaseWriter(whole).existingTimes().size(), CaseWriter(split).existingTimes().size());
+    // every field a model registered for restarts is in the time directory
+    for (const auto& f : a.scalarFields()) EXPECT_EQ(f->data, *b.findScalar(f->name)) << f->name;
+    for (const auto& f : a.vectorFields()) EXPECT_EQ(f->data, *b.findVector(f->name)) << f->name;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryIntegratorAndPressureModel, RestartTest, testing::ValuesIn(combinations()),
+                         [](const auto& info) { return info.param.integrator + "_" + info.param.pressure; });
+
+fs::path tooLargeTimeStep(const fs::path& dir, const std::string& onBlowUp) {
+    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir, fs::copy_options::recursive);
+    // about 6 times the stable step, fixed
+    editDictionary(dir / "system/controlDict", {{"adjustTimeStep", "no"}, {"deltaT", "1e-3"}, {"endTime", "0.05"},
+                                                 {"writeInterval", "0.05"}, {"onBlowUp", onBlowUp}});
+    return dir;
+}
+
+TEST(BlowUp, StopsNamingStepTimeAndParticleAndWritesTheLastGoodState) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path caseDir = tooLargeTimeStep(tmp.path() / "case", "stop");
+    Simulation sim(caseDir);
+    try {
+        sim.run();
+        FAIL() << "expected a blow-up";
+    } catch (const std::runtime_error& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("blow-up at step "), std::string::npos) << m;
+        EXPECT_NE(m.find(", time "), std::string::npos) << m;
+        EXPECT_NE(m.find(": particle "), std::string::npos) << m;
+        EXPECT_NE(m.find("The last good state (time "), std::string::npos) << m;
+    }
+    const auto times = CaseWriter(caseDir).existingTimes();
+    ASSERT_GE(times.size(), 2u) << "0 and the last good state";
+    const ParticleSet good = readVtp(caseDir / times.back().second / "fluid.vtp");
+    for (std::size_t i = 0; i < good.size(); ++i) {
+        ASSERT_TRUE(good.position()[i].allFinite());
+        ASSERT_LT((good.density()[i] - 1000) / 1000, 0.2) << "the written state is below the blow-up bound";
+    }
+}
+
+TEST(BlowUp, ReduceDeltaTRetriesAndFinishes) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    Simulation sim(tooLargeTimeStep(tmp.path() / "case", "reduceDeltaT"));
+    const RunSummary r = sim.run();
+    EXPECT_NEAR(r.endTime, 0.05, 1e-12);
+    EXPECT_GT(r.steps, 50) << "some steps were taken with a reduced deltaT";
+}
+
+} // namespace
