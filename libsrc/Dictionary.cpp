@@ -82,9 +82,11 @@ NumberStatus parseNumber(const std::string& text, double& value) {
     return NumberStatus::Ok;
 }
 
+// Regular files only (never /dev/zero or a FIFO: a dictionary must not hang the solver), and
+// at most 64 MiB.
 bool readWholeFile(const fs::path& file, std::string& text) {
     std::error_code ec;
-    if (fs::is_directory(file, ec)) return false;
+    if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > (std::uintmax_t(64) << 20) || ec) return false;
     std::ifstream in(file, std::ios::binary);
     if (!in) return false;
     std::ostringstream s;

@@ -159,6 +159,8 @@ void Simulation::buildParticles() {
     const Vec3 reach = extent.cwiseMax(Vec3::Constant(10 * physics.supportRadius));
     blowUpMin_ = g.boundsMin - reach;
     blowUpMax_ = g.boundsMax + reach;
+    // ... or moves 100 times faster than a free fall across the domain could make it
+    blowUpSpeedFloor_ = 100 * std::sqrt(2 * physics.gravity.norm() * extent.norm());
     system_.search.setup(physics.supportRadius, physics.dimension, domainMin_, domainMax_, periodic_);
     if (wall.size() > 0) {
         const auto order = system_.search.sortOrder(wall.position());
@@ -172,6 +174,8 @@ void Simulation::readRunControls(const Dictionary& control) {
     reduceDeltaTOnBlowUp_ = control.getWordOrDefault("onBlowUp", {"stop", "reduceDeltaT"}, "stop") == "reduceDeltaT";
     blowUpRetries_ = control.getOrDefault<int>("blowUpRetries", 5);
     blowUpDensityError_ = control.getOrDefault<double>("blowUpDensityError", 0.2);
+    blowUpSpeedSetting_ = control.found("blowUpSpeed") ? control.get<double>("blowUpSpeed") : 0.0; // 0: automatic
+    blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
     if (!(blowUpDensityError_ > 0))
         throw InputError(control.locationOf("blowUpDensityError"), "blowUpDensityError must be positive",
                          "blowUpDensityError");
@@ -329,6 +333,10 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
             worstKind = 3;
             break;
         }
+        if (worstKind < 2 && v[i].squaredNorm() > blowUpSpeed_ * blowUpSpeed_) {
+            worst = long(i);
+            worstKind = 2;
+        }
         if (worstKind < 2)
             for (int d = 0; d < dim; ++d)
                 if (!periodic_.axis[d] && (x[i][d] < blowUpMin_[d] || x[i][d] > blowUpMax_[d])) {
@@ -348,6 +356,7 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
     s << std::setprecision(6) << "blow-up at step " << system_.step << ", time " << system_.time << ": particle "
       << f.id()[i] << " at (" << x[i].transpose() << ") with velocity (" << v[i].transpose() << ") ";
     if (worstKind == 3) s << "has a value that is not finite (density " << rho[i] << ", pressure " << p[i] << ")";
+    else if (worstKind == 2 && v[i].norm() > blowUpSpeed_) s << "moves faster than " << blowUpSpeed_ << " m/s";
     else if (worstKind == 2) s << "is far outside the domain";
     else s << "has a density error of " << 100 * worstDensity << "% (blowUpDensityError " << 100 * blowUpDensityError_ << "%)";
     return s.str();
@@ -404,6 +413,12 @@ RunSummary Simulation::run() {
     if (!restarted_) {
         evaluate(Scalar(time_->initialDeltaT()));
         write();
+    }
+    {
+        double vMax0 = 0;
+        for (const auto& v : s.fluid.velocity()) vMax0 = std::max(vMax0, double(v.norm()));
+        blowUpSpeedAuto_ = std::max({blowUpSpeedFloor_, 100 * double(s.soundSpeed), 100 * vMax0, 1.0});
+        blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
     }
 
     const double startTime = s.time;

@@ -76,6 +76,8 @@ private:
     bool reduceDeltaTOnBlowUp_ = false;
     int blowUpRetries_ = 5;
     double blowUpDensityError_ = 0.2;
+    // [m/s]: the setting (0 = automatic: 100 × max(c0, sqrt(2 g L), |u0|)) and the bound in use
+    double blowUpSpeedSetting_ = 0, blowUpSpeedAuto_ = 1e300, blowUpSpeedFloor_ = 0, blowUpSpeed_ = 1e300;
     bool runTimeModifiable_ = true;
     std::filesystem::file_time_type controlDictTime_;
     double lastDeltaT_ = 0;

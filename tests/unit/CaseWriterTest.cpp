@@ -155,8 +155,9 @@ TEST(CaseWriter, VtpRoundTripIsExact) {
         EXPECT_EQ((*smoothing)[i], (*set.findScalar("smoothingLength"))[i]);
     }
     EXPECT_EQ(back.particleMass(), set.particleMass());
-    // acceleration is neither output nor restart: not written, so all zero after reading.
-    EXPECT_FALSE(contains(pointArrayNames(file), "acceleration"));
+    // acceleration is restart data (not output): written, and read back exactly.
+    EXPECT_TRUE(contains(pointArrayNames(file), "acceleration"));
+    EXPECT_EQ(back.acceleration(), set.acceleration());
 }
 
 TEST(CaseWriter, VtpHasOneVertexPerParticleAndScalarTypedArrays) {
@@ -203,7 +204,7 @@ TEST(CaseWriter, FieldSelection) {
     EXPECT_TRUE(contains(all, "wallNormal"));
     EXPECT_TRUE(contains(all, "restartOnly"));
     EXPECT_FALSE(contains(all, "notOutput"));
-    EXPECT_FALSE(contains(all, "acceleration"));
+    EXPECT_TRUE(contains(all, "acceleration")); // restart data
     EXPECT_FALSE(contains(all, "position"));
 
     // Explicit selection: the names given, restart fields anyway, id always.
