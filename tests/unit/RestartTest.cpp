@@ -28,6 +28,8 @@ void setThreads(int n) {
 void editDictionary(const fs::path& file, const std::vector<std::pair<std::string, std::string>>& entries) {
     Dictionary d = Dictionary::fromFile(file);
     for (const auto& [key, value] : entries) d.set(key, value);
+    if (d.found("pressureSolvers") && d.found("pressure") && d.isDict("pressure"))
+        d.remove("pressureSolvers"); // the tutorial's menu of solvers, replaced by an explicit choice
     std::ofstream(file) << d.toString();
 }
 

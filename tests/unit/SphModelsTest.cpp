@@ -185,6 +185,14 @@ TEST(Akinci, WallVolumesAndDensityNextToTheWall) {
     std::cout << "first fluid row density / rho0: without wall " << bare << ", with akinci wall " << walled << "\n";
     EXPECT_NEAR(walled, 1.0, 0.1) << "the wall completes the neighbourhood";
 
+    // `volume lattice`: every wall particle carries the fluid particle mass, so a wall sampled
+    // on the fluid lattice completes the neighbourhood exactly: rest density in the first row
+    auto lattice = test::createModel<BoundaryModel>("type akinci; volume lattice;", sc.s.physics);
+    lattice->initialise(sc.s);
+    for (double m : *sc.s.boundaryMass) ASSERT_EQ(m, sc.s.fluid.particleMass());
+    p->computeDensity(sc.s);
+    EXPECT_NEAR(firstRowDensity(), 1.0, 1e-9);
+
     // a compressed particle next to the wall is pushed away from it
     for (auto& a : sc.s.fluid.acceleration()) a.setZero();
     for (auto& x : sc.s.fluid.position()) x.y() -= 0.3 * dx;

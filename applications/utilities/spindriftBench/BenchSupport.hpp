@@ -1,0 +1,153 @@
+// Spindrift — what spindriftBench and spindriftStress share: model combinations from
+// `-vary "key=v1,v2"` options, dictionary overrides on a copy of a case, running the solver (or
+// a case's Allrun) as a child process with a time limit, reading its final "End:" line, CSV
+// output and the python3/matplotlib plotting scripts.
+//
+// Overrides. A key names an entry by its dictionary path, e.g. `pressure.type` (sphSchemes'
+// pressure sub-dictionary), `particleSpacing` (constant/fluidProperties), `endTime`
+// (system/controlDict). It is looked up in system/controlDict, system/sphSchemes,
+// system/sphSolution, constant/fluidProperties and constant/geometry: the file holding the
+// full path is used (an error if several do); if none does, the file holding the parent
+// dictionary (an error if none or several; a top-level key then needs an existing entry).
+// Setting `<model>.type` to another model replaces that sub-dictionary by `type <name>;` plus
+// the entries given for that model in the presets (benchDict `presets { pressure { pcisph
+// { ... } } }`), since the old model's keywords mean nothing to the new one. Type overrides are
+// applied before the other overrides of a combination.
+#pragma once
+
+#include "Dictionary.hpp"
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace spindrift::bench {
+
+struct Override {
+    std::string key, value;
+};
+using Combination = std::vector<Override>;
+
+// "key=v1,v2,v3" → key and values (values may hold spaces and parentheses, not commas).
+struct VaryOption {
+    std::string key;
+    std::vector<std::string> values;
+};
+VaryOption parseVary(const std::string& text);
+
+// "kernel.type=sinc2 pressure.type=isobaric": one explicit combination (values without spaces).
+Combination parseCombination(const std::string& text);
+
+// The entries of a dictionary of `key value;` lines (no sub-dictionaries) as overrides, e.g.
+// benchDict's `quick { endTime 0.1; particleSpacing 0.004; }`.
+Combination overridesFrom(const Dictionary& dict);
+
+// Cartesian product, the first option outermost; one empty combination for no options.
+std::vector<Combination> combinations(const std::vector<VaryOption>& options);
+
+// "wcsph_cubicSpline_0.01": values joined by '_', characters unsafe in file names replaced.
+std::string combinationName(const Combination& c);
+// Names for a list of combinations: combinationName() when those are distinct, else every
+// override qualified by its key ("viscosity-pereaCordero_integrator-pereaCordero").
+std::vector<std::string> uniqueNames(const std::vector<Combination>& combos);
+// "pressure.type=wcsph kernel.type=cubicSpline"
+std::string combinationLabel(const Combination& c);
+
+// Model kinds named by `<sub-dictionary>.type` keys (kernel, pressure, ...): the kind whose
+// availability decides whether a combination can run; empty for other keys.
+std::string kindOfTypeKey(const std::string& key);
+// The first type override in 'c' whose plugin is not available, as "kind 'name'"; empty if all are.
+std::string unavailableModel(const Combination& c);
+
+// The five dictionaries of a case, editable and written back.
+class CaseDictionaries {
+public:
+    explicit CaseDictionaries(const std::filesystem::path& caseDir);
+    // Applies one override (see the header comment); 'presets' may be null.
+    void apply(const Override& o, const Dictionary* presets);
+    // Applies a combination: type overrides first.
+    void apply(const Combination& c, const Dictionary* presets);
+    // Writes the dictionaries that changed.
+    void write() const;
+    Dictionary& file(const std::string& relative); // e.g. "system/controlDict"
+
+private:
+    struct File {
+        std::string relative;
+        Dictionary dict;
+        bool present = false, changed = false;
+    };
+    std::filesystem::path dir_;
+    std::vector<File> files_;
+};
+
+// Sets 'path' (dotted) in 'dict' to 'value', creating the last component; intermediate
+// dictionaries must exist. Returns false if an intermediate dictionary is missing.
+bool setPath(Dictionary& dict, const std::string& path, const std::string& value);
+bool hasPath(const Dictionary& dict, const std::string& path);
+const Dictionary* findPath(const Dictionary& dict, const std::string& path); // a sub-dictionary
+// Replaces the sub-dictionary at 'path' by 'replacement'.
+void setDictPath(Dictionary& dict, const std::string& path, const Dictionary& replacement);
+
+// Copies a case's input (everything but time directories, postProcessing/, logs, .pvd files,
+// images and temporary files) into 'target' (created, must not exist).
+void copyCaseInput(const std::filesystem::path& source, const std::filesystem::path& target);
+
+// Runs argv in 'workDir' with stdout and stderr to 'logFile', extra environment 'env'
+// (NAME=value), in its own process group; after 'timeoutSeconds' (0 = none) the group is
+// terminated. Returns the exit status (128 + signal if killed) and whether it timed out.
+struct ProcessResult {
+    int status = -1;
+    bool timedOut = false;
+    double seconds = 0;
+};
+ProcessResult runProcess(const std::vector<std::string>& argv, const std::filesystem::path& workDir,
+                         const std::filesystem::path& logFile, const std::vector<std::string>& env,
+                         double timeoutSeconds);
+
+// The solver's final line "End: N steps to time T in W s wall time (...), K times written,
+// max density error E%[, average iterations A]".
+struct EndLine {
+    bool found = false;
+    long steps = 0;
+    double endTime = 0, wallSeconds = 0, maxDensityError = 0, averageIterations = 0;
+    long fluidParticles = 0;
+};
+EndLine parseEndLine(const std::filesystem::path& logFile);
+// The first line of a log holding 'needle' (empty if none).
+std::string findLine(const std::filesystem::path& logFile, const std::string& needle);
+// The last non-empty line of a log.
+std::string lastLine(const std::filesystem::path& logFile);
+
+// Rows of a postProcessing .dat file (every start-time folder of postProcessing/<name>/ in
+// time order): the header's column names (Time first) and the numbers.
+struct Table {
+    std::vector<std::string> columns;
+    std::vector<std::vector<double>> rows;
+    int column(const std::string& name) const; // -1 if absent
+    std::vector<double> values(const std::string& name) const;
+};
+Table readPostProcessing(const std::filesystem::path& caseDir, const std::string& name);
+
+// CSV with a fixed header, rows appended and flushed one at a time.
+class CsvWriter {
+public:
+    CsvWriter(const std::filesystem::path& file, const std::vector<std::string>& columns);
+    void row(const std::vector<std::string>& values);
+private:
+    std::filesystem::path file_;
+    std::size_t columns_;
+};
+std::string csvNumber(double v, int precision = 6);
+
+// Directory of the running executable (where the solver and the plotting scripts are).
+std::filesystem::path executableDirectory();
+// A python3 that imports matplotlib ($SPINDRIFT_PYTHON, python3, /usr/bin/python3), or empty.
+std::string findPython();
+// A plotting script shipped with the utilities: next to the executable, in
+// ../share/spindrift/, or in the source tree.
+std::filesystem::path findScript(const std::string& name);
+
+} // namespace spindrift::bench

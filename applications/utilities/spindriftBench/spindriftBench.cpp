@@ -1,0 +1,295 @@
+// spindriftBench — run time against error over model combinations.
+//
+//   spindriftBench -case tutorials/validation/damBreak2D
+//       -vary "pressure.type=wcsph,pcisph,relaxedPbf" -vary "kernel.type=cubicSpline,wendlandC2,sinc2"
+//       -vary "particleSpacing=0.0028575,0.00142875" [-quick] [-output DIR] [-threads 1] [-timeout S]
+//
+// For every combination of the -vary values the case's input is copied to
+// <output>/runs/<combination>/, the overrides are applied to the copy's dictionaries
+// (BenchSupport.hpp: a key is a dictionary path such as pressure.type, particleSpacing or
+// endTime), and the case is run in a child process: its Allrun when it has one (validation
+// cases print their error figure as "Figure: name = value"), else the solver. A crash, a
+// blow-up or a time-out of one combination is a row of the table, not the end of the bench;
+// a combination naming a model whose plugin is not built is an "unavailable" row.
+// The case's optional system/benchDict gives `quick { key value; ... }` (overrides applied with
+// -quick, before the -vary ones) and `presets { pressure { pcisph { ... } } }` (entries a model
+// needs when -vary switches to it).
+//
+// Output: <output>/bench.csv (combination, status, wall time, steps, average iterations, max
+// density error, the case's error figure, Pareto flag), <output>/bench.png (wall time against
+// error, Pareto front marked; python3 + matplotlib) and a markdown table on stdout.
+#include "BenchSupport.hpp"
+#include "Log.hpp"
+
+#include <algorithm>
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <regex>
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+using namespace spindrift;
+using namespace spindrift::bench;
+
+namespace {
+
+struct Row {
+    Combination combination;
+    std::string name, status, note, figureName;
+    EndLine end;
+    double figure = std::nan("");
+    bool pareto = false;
+    double error() const { return std::isfinite(figure) ? figure : 100 * end.maxDensityError; }
+};
+
+void markPareto(std::vector<Row>& rows) {
+    for (auto& r : rows) {
+        if (r.status != "ok" || !std::isfinite(r.error())) continue;
+        r.pareto = true;
+        for (const auto& o : rows) {
+            if (&o == &r || o.status != "ok" || !std::isfinite(o.error())) continue;
+            const bool noWorse = o.end.wallSeconds <= r.end.wallSeconds && o.error() <= r.error();
+            const bool better = o.end.wallSeconds < r.end.wallSeconds || o.error() < r.error();
+            if (noWorse && better) {
+                r.pareto = false;
+                break;
+            }
+        }
+    }
+}
+
+std::vector<std::string> keysOf(const std::vector<Combination>& combos) {
+    std::vector<std::string> keys;
+    for (const auto& c : combos)
+        for (const auto& o : c)
+            if (std::find(keys.begin(), keys.end(), o.key) == keys.end()) keys.push_back(o.key);
+    return keys;
+}
+
+std::vector<std::string> csvColumns(const std::vector<std::string>& keys) {
+    std::vector<std::string> c{"combination"};
+    for (const auto& k : keys) c.push_back(k);
+    for (const char* s : {"status", "wallTime_s", "steps", "fluidParticles", "endTime", "avgIterations",
+                          "maxDensityError_pct", "figureName", "figure", "pareto", "note"})
+        c.emplace_back(s);
+    return c;
+}
+
+std::vector<std::string> csvValues(const Row& r, const std::vector<std::string>& keys) {
+    std::vector<std::string> v{r.name};
+    for (const auto& k : keys) {
+        std::string value;
+        for (const auto& o : r.combination)
+            if (o.key == k) value = o.value;
+        v.push_back(value);
+    }
+    const bool ran = r.end.found;
+    v.push_back(r.status);
+    v.push_back(ran ? csvNumber(r.end.wallSeconds, 4) : "");
+    v.push_back(ran ? std::to_string(r.end.steps) : "");
+    v.push_back(ran ? std::to_string(r.end.fluidParticles) : "");
+    v.push_back(ran ? csvNumber(r.end.endTime) : "");
+    v.push_back(ran && r.end.averageIterations > 0 ? csvNumber(r.end.averageIterations, 4) : "");
+    v.push_back(ran ? csvNumber(100 * r.end.maxDensityError, 4) : "");
+    v.push_back(r.figureName);
+    v.push_back(csvNumber(r.figure, 5));
+    v.push_back(r.pareto ? "yes" : "");
+    v.push_back(r.note);
+    return v;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    po::options_description options(
+        "Usage: spindriftBench -case DIR [-vary key=v1,v2,...]... [options]\n"
+        "Runs a case for every combination of the -vary values and tabulates wall time against error.\nOptions");
+    options.add_options()
+        ("help", "print this help and exit")
+        ("case", po::value<std::string>(), "the case to copy and run (required)")
+        ("vary", po::value<std::vector<std::string>>()->composing(),
+         "key=v1,v2,... : a dictionary entry and its values (repeatable), e.g. pressure.type=wcsph,pcisph")
+        ("combination", po::value<std::vector<std::string>>()->composing(),
+         "\"key=value key=value ...\": one more combination (repeatable), run besides the -vary product")
+        ("quick", "apply the case's system/benchDict 'quick' overrides (short runs for CI)")
+        ("output", po::value<std::string>(), "output directory (default ./bench-<caseName>)")
+        ("threads", po::value<int>()->default_value(1), "OpenMP threads per run (timings: keep 1)")
+        ("timeout", po::value<double>()->default_value(0), "seconds after which a run is stopped (0 = none)")
+        ("keep", "keep every run's directory under <output>/runs")
+        ("casePlots", "let each run's Allrun draw its plot (skipped by default: SPINDRIFT_NO_PLOT=1)")
+        ("noPlot", "do not draw bench.png")
+        ("list", "list the combinations and stop");
+    po::variables_map vm;
+    try {
+        const auto style = po::command_line_style::unix_style | po::command_line_style::allow_long_disguise;
+        po::store(po::command_line_parser(argc, argv).options(options).style(style).run(), vm);
+        po::notify(vm);
+        if (vm.count("help")) {
+            std::cout << options << std::endl;
+            return 0;
+        }
+        if (!vm.count("case")) throw std::runtime_error("-case is required");
+    } catch (const std::exception& e) {
+        std::cerr << "spindriftBench: " << e.what() << "\n" << options << std::endl;
+        return 2;
+    }
+    try {
+        log::setQuiet(true);
+        const fs::path caseDir = fs::absolute(vm["case"].as<std::string>());
+        if (!fs::is_directory(caseDir / "system"))
+            throw std::runtime_error("'" + caseDir.string() + "' is not a case (no system/)");
+        const std::string caseName = fs::weakly_canonical(caseDir).filename().string();
+        std::vector<VaryOption> vary;
+        if (vm.count("vary"))
+            for (const auto& v : vm["vary"].as<std::vector<std::string>>()) vary.push_back(parseVary(v));
+        auto combos = combinations(vary);
+        if (vm.count("combination")) {
+            if (vary.empty()) combos.clear();
+            for (const auto& text : vm["combination"].as<std::vector<std::string>>()) combos.push_back(parseCombination(text));
+        }
+        if (vm.count("list")) {
+            const auto names = uniqueNames(combos);
+            for (std::size_t k = 0; k < combos.size(); ++k) std::cout << names[k] << "  " << combinationLabel(combos[k]) << '\n';
+            return 0;
+        }
+        const auto keys = keysOf(combos);
+        const fs::path output = fs::absolute(vm.count("output") ? vm["output"].as<std::string>() : "bench-" + caseName);
+        const int threads = vm["threads"].as<int>();
+        const double timeout = vm["timeout"].as<double>();
+        const bool quick = vm.count("quick") > 0, keep = vm.count("keep") > 0;
+
+        Dictionary benchDict("benchDict");
+        if (fs::exists(caseDir / "system/benchDict")) benchDict = Dictionary::fromFile(caseDir / "system/benchDict");
+        const Dictionary* presets = benchDict.findDict("presets");
+        Combination quickOverrides;
+        if (quick) {
+            if (const Dictionary* q = benchDict.findDict("quick")) {
+                quickOverrides = overridesFrom(*q);
+            } else {
+                std::cerr << "spindriftBench: warning: " << caseName
+                          << " has no system/benchDict 'quick' settings; -quick runs it as it is\n";
+            }
+        }
+
+        const fs::path exeDir = executableDirectory();
+        const fs::path solver = exeDir / "spindrift";
+        const char* envDir = std::getenv("SPINDRIFT_DIR");
+        const std::string spindriftDir = envDir ? envDir : SPINDRIFT_SOURCE_DIR;
+        const bool hasAllrun = fs::exists(caseDir / "Allrun");
+        fs::create_directories(output / "runs");
+
+        std::cout << "spindriftBench: " << caseName << ", " << combos.size() << " combination(s)"
+                  << (quick ? " (quick)" : "") << ", " << threads << " thread(s) per run, output " << output.string()
+                  << std::endl;
+        std::vector<Row> rows;
+        CsvWriter partial(output / "bench.csv", csvColumns(keys));
+        const auto names = uniqueNames(combos);
+        for (std::size_t k = 0; k < combos.size(); ++k) {
+            const Combination& c = combos[k];
+            Row row;
+            row.combination = c;
+            row.name = names[k];
+            const fs::path runDir = output / "runs" / row.name;
+            std::cout << "  " << std::left << std::setw(60) << combinationLabel(c) << ' ' << std::flush;
+            const std::string missing = unavailableModel(c);
+            if (!missing.empty()) {
+                row.status = "unavailable";
+                row.note = missing + " is not built";
+            } else {
+                try {
+                    fs::remove_all(runDir);
+                    copyCaseInput(caseDir, runDir);
+                    CaseDictionaries dicts(runDir);
+                    dicts.apply(quickOverrides, presets);
+                    dicts.apply(c, presets);
+                    dicts.write();
+                    std::vector<std::string> env{"OMP_NUM_THREADS=" + std::to_string(threads),
+                                                 "SPINDRIFT_BIN=" + exeDir.string(),
+                                                 "SPINDRIFT_DIR=" + spindriftDir,
+                                                 "PATH=" + exeDir.string() + ":" + (std::getenv("PATH") ? std::getenv("PATH") : "")};
+                    if (!vm.count("casePlots")) env.push_back("SPINDRIFT_NO_PLOT=1");
+                    const fs::path solverLog = runDir / "log.spindrift";
+                    ProcessResult pr;
+                    if (hasAllrun) pr = runProcess({"bash", "./Allrun"}, runDir, runDir / "log.Allrun", env, timeout);
+                    else
+                        pr = runProcess({solver.string(), "-case", ".", "-threads", std::to_string(threads)}, runDir,
+                                        solverLog, env, timeout);
+                    row.end = parseEndLine(solverLog);
+                    if (hasAllrun) {
+                        const std::string figure = findLine(runDir / "log.Allrun", "Figure: ");
+                        static const std::regex pattern(R"(Figure: (\S+) = ([^ ]+))");
+                        std::smatch m;
+                        if (std::regex_search(figure, m, pattern)) {
+                            row.figureName = m[1];
+                            row.figure = std::strtod(m[2].str().c_str(), nullptr);
+                        }
+                    }
+                    const std::string blowUp = findLine(solverLog, "blow-up");
+                    if (pr.timedOut) {
+                        row.status = "timeout";
+                        row.note = "stopped after " + csvNumber(timeout, 3) + " s";
+                    } else if (!blowUp.empty() && !row.end.found) {
+                        row.status = "unstable";
+                        row.note = blowUp.substr(blowUp.find("blow-up"));
+                    } else if (row.end.found && pr.status == 0) {
+                        row.status = "ok";
+                    } else {
+                        row.status = "failed";
+                        const std::string solverLast = lastLine(solverLog);
+                        row.note = !solverLast.empty() && !row.end.found ? solverLast : lastLine(runDir / "log.Allrun");
+                    }
+                } catch (const std::exception& e) {
+                    row.status = "failed";
+                    row.note = e.what();
+                }
+                if (!keep) fs::remove_all(runDir);
+            }
+            std::cout << row.status;
+            if (row.end.found) std::cout << "  " << std::setprecision(4) << row.end.wallSeconds << " s";
+            if (std::isfinite(row.figure)) std::cout << "  " << row.figureName << " " << row.figure;
+            if (!row.note.empty() && row.status != "ok") std::cout << "  (" << row.note << ")";
+            std::cout << std::endl;
+            partial.row(csvValues(row, keys));
+            rows.push_back(row);
+        }
+        if (!keep) fs::remove(output / "runs");
+        markPareto(rows);
+        {
+            CsvWriter csv(output / "bench.csv", csvColumns(keys));
+            for (const auto& r : rows) csv.row(csvValues(r, keys));
+        }
+
+        // markdown table
+        std::cout << "\n| combination | status | wall time [s] | steps | avg. iterations | max density error [%] | "
+                  << (rows.empty() || rows.front().figureName.empty() ? "figure" : rows.front().figureName)
+                  << " | Pareto |\n|---|---|---|---|---|---|---|---|\n";
+        for (const auto& r : rows) {
+            auto v = csvValues(r, keys);
+            const std::size_t k = 1 + keys.size();
+            std::cout << "| " << combinationLabel(r.combination) << " | " << v[k] << " | " << v[k + 1] << " | " << v[k + 2]
+                      << " | " << v[k + 5] << " | " << v[k + 6] << " | " << v[k + 8] << " | " << v[k + 9] << " |\n";
+        }
+        std::cout << "\nTable: " << (output / "bench.csv").string() << std::endl;
+
+        if (!vm.count("noPlot")) {
+            const std::string python = findPython();
+            const fs::path script = findScript("spindriftBenchPlot.py");
+            if (python.empty() || script.empty())
+                std::cerr << "spindriftBench: warning: no python3 with matplotlib (or no spindriftBenchPlot.py): "
+                             "bench.png not drawn\n";
+            else {
+                const auto pr = runProcess({python, script.string(), (output / "bench.csv").string(),
+                                            (output / "bench.png").string(), caseName + (quick ? " (quick)" : "")},
+                                           output, output / "log.plot", {}, 120);
+                if (pr.status == 0) std::cout << "Plot: " << (output / "bench.png").string() << std::endl;
+                else std::cerr << "spindriftBench: plotting failed, see " << (output / "log.plot").string() << '\n';
+            }
+        }
+        return 0;
+    } catch (const std::exception& e) {
+        std::cerr << "spindriftBench: error: " << e.what() << std::endl;
+        return 1;
+    }
+}

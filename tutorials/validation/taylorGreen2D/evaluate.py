@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""taylorGreen2D: the decaying Taylor-Green vortex against its exact solution (ANALYTICAL.md):
+u = -U e^{bt} cos(2 pi x/L) sin(2 pi y/L), v = U e^{bt} sin(2 pi x/L) cos(2 pi y/L),
+b = -8 pi^2 nu / L^2.
+
+Reads the written time directories (fluid.vtp, with VTK: run it with pvpython) and
+postProcessing/stats, prints 'Figure: name = value' lines (the first is the case's error
+figure, read by spindriftBench) and draws taylorGreen2D.png (unless --no-plot or
+SPINDRIFT_NO_PLOT=1).
+Figures:
+  velocityL2      the largest relative L2 error of the particle velocities over the written
+                  times, sqrt(sum_i |u_i - u_exact(x_i, t)|^2 / sum_i |u_exact(x_i, t)|^2)
+  maxSpeedError   relative error of the largest particle speed against U e^{bt} at t = 1
+  energyError     relative error of the kinetic energy against E0 e^{2bt} at the end
+"""
+import os
+import re
+import sys
+
+import numpy as np
+
+
+def read_dat(name, case="."):
+    base = os.path.join(case, "postProcessing", name)
+    header, rows = None, []
+    for f in sorted(os.listdir(base), key=float):
+        path = os.path.join(base, f, name + ".dat")
+        with open(path) as fh:
+            header = fh.readline().lstrip("#").split()
+        rows.append(np.genfromtxt(path, comments="#", ndmin=2))
+    return header, np.vstack(rows)
+
+
+def read_vtp(path):
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    out = reader.GetOutput()
+    return vtk_to_numpy(out.GetPoints().GetData()), vtk_to_numpy(out.GetPointData().GetArray("velocity"))
+
+
+def times(case="."):
+    out = []
+    for d in os.listdir(case):
+        try:
+            t = float(d)
+        except ValueError:
+            continue
+        if os.path.exists(os.path.join(case, d, "fluid.vtp")):
+            out.append((t, d))
+    return sorted(out)
+
+
+def dict_value(path, keyword):
+    text = re.sub(r"//.*", "", open(path).read())
+    m = re.search(r"\b" + keyword + r"\s+([^;]+);", text)
+    return m.group(1).strip() if m else None
+
+
+def main():
+    plot = "--no-plot" not in sys.argv and os.environ.get("SPINDRIFT_NO_PLOT", "0") != "1"
+    nu = float(dict_value("constant/fluidProperties", "viscosity"))
+    dx = float(dict_value("constant/fluidProperties", "particleSpacing"))
+    geometry = re.sub(r"//.*", "", open("constant/geometry").read())
+    lo, hi = [float(v) for v in re.search(r"\bx\s*\(([^)]*)\)", geometry[geometry.index("periodic"):]).group(1).split()]
+    L = hi - lo
+    k = 2 * np.pi / L
+    b = -8 * np.pi ** 2 * nu / L ** 2
+
+    def exact(x, t):
+        e = np.exp(b * t)
+        return np.stack([-e * np.cos(k * x[:, 0]) * np.sin(k * x[:, 1]), e * np.sin(k * x[:, 0]) * np.cos(k * x[:, 1])], axis=1)
+
+    errors = []
+    for t, d in times():
+        if t <= 0:
+            continue
+        x, u = read_vtp(os.path.join(d, "fluid.vtp"))
+        ue = exact(x, t)
+        errors.append((t, np.sqrt(np.sum((u[:, :2] - ue) ** 2) / np.sum(ue ** 2))))
+    if not errors:
+        sys.exit("no time directory after t = 0")
+    l2 = max(e for _, e in errors)
+    header, stats = read_dat("stats")
+    ts, speed, ke = stats[:, 0], stats[:, header.index("maxSpeed")], stats[:, header.index("kineticEnergy")]
+    i1 = int(np.argmin(np.abs(ts - 1.0)))
+    speed_error = (speed[i1] - np.exp(b * ts[i1])) / np.exp(b * ts[i1])
+    energy_error = (ke[-1] / ke[0] - np.exp(2 * b * ts[-1])) / np.exp(2 * b * ts[-1])
+    print("Figure: velocityL2 = %.4f (largest relative L2 error of the particle velocities at t = %s)"
+          % (l2, ", ".join("%g" % t for t, _ in errors)))
+    for t, e in errors:
+        print("    t = %g: L2 = %.4f" % (t, e))
+    print("Figure: maxSpeedError = %.4f (max speed %.4f at t = %.3g, exact %.4f)"
+          % (speed_error, speed[i1], ts[i1], np.exp(b * ts[i1])))
+    print("Figure: energyError = %.4f (E/E0 = %.4f at t = %.3g, exact %.4f)"
+          % (energy_error, ke[-1] / ke[0], ts[-1], np.exp(2 * b * ts[-1])))
+
+    if not plot:
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (a, c) = plt.subplots(1, 2, figsize=(11, 4.5))
+    tt = np.linspace(0, ts[-1], 200)
+    a.semilogy(tt, np.exp(b * tt), "k-", lw=1, label="exact $U e^{bt}$")
+    a.semilogy(ts, speed, "C0o", ms=3, label="SPH max speed")
+    a.semilogy(tt, np.exp(2 * b * tt), "k--", lw=1, label="exact $E/E_0 = e^{2bt}$")
+    a.semilogy(ts, ke / ke[0], "C1s", ms=3, label="SPH $E/E_0$")
+    a.set_xlabel("t")
+    a.set_title("decay (Re = %.0f, L/dx = %.0f)" % (L / nu, L / dx), fontsize=10)
+    a.legend(fontsize=8)
+    a.grid(alpha=0.3, which="both")
+    t_last, d_last = times()[-1]
+    x, u = read_vtp(os.path.join(d_last, "fluid.vtp"))
+    s = np.sqrt(u[:, 0] ** 2 + u[:, 1] ** 2)
+    sc = c.scatter(x[:, 0], x[:, 1], c=s, s=5, cmap="viridis", rasterized=True)
+    c.quiver(x[::3, 0], x[::3, 1], u[::3, 0], u[::3, 1], scale=12 * np.exp(b * t_last), width=0.003)
+    c.set_aspect("equal")
+    c.set_title("particles at t = %g (speed); L2 error %.3f" % (t_last, errors[-1][1]), fontsize=10)
+    fig.colorbar(sc, ax=c)
+    fig.tight_layout()
+    fig.savefig("taylorGreen2D.png", dpi=72)
+    print("Plot: taylorGreen2D.png")
+
+
+if __name__ == "__main__":
+    main()
