@@ -309,7 +309,9 @@ double Simulation::stableDeltaT() const {
     if (aMax > 0) dt = std::min(dt, 0.25 * std::sqrt(h / aMax));
     double nu = viscosity_ ? viscosity_->timeStepViscosity() : 0.0;
     for (const auto& f : forces_) nu = std::max(nu, double(f->timeStepViscosity()));
-    if (nu > 0) dt = std::min(dt, 0.125 * h * h / nu);
+    // Morris et al. (1997): 0.125 h_s²/ν on the smoothing length h_s = h/2 (on the support
+    // radius itself the limit is 4 times too large: Poiseuille flow blows up)
+    if (nu > 0) dt = std::min(dt, 0.125 * 0.25 * h * h / nu);
     return dt;
 }
 
