@@ -98,6 +98,7 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
         boundaryModel_ = registry.create<BoundaryModel>(schemes.subDict("boundary"), physics);
     }
     schemes.markUsed("boundary");
+    schemes.markUsed("pressureSolvers"); // the tutorials' menu of solvers, chosen with $pressureSolvers.<name>
     schemes.checkAllKeywordsUsed();
     case_.sphSolution.markUsed("pressure");
     case_.sphSolution.markUsed("viscosity");

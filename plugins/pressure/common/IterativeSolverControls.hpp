@@ -1,0 +1,89 @@
+// Tolerances of the iterative (incompressible) pressure solvers pcisph, pbf and relaxedPbf,
+// read from system/sphSolution (MODELS.md "Pressure terms"):
+//
+//   pressure
+//   {
+//       maxDensityError   0.01;      // η: stop when the density error is at most this
+//       densityErrorNorm  maximum;   // maximum | average: which error is held below η
+//       minIterations     3;
+//       maxIterations     100;       // stop here even if not converged (the log says so)
+//   }
+//
+// The density error of a particle is the compression max(0, ρ* − ρ0)/ρ0 of its predicted
+// density (the deficit at a free surface is not an error of the pressure solver); 'maximum'
+// and 'average' are taken over all fluid particles. A missing sphSolution or keyword falls back
+// to the solver's defaults, echoed once in the log. Unknown keywords are errors.
+#pragma once
+
+#include "Dictionary.hpp"
+#include "SphSystem.hpp"
+
+#include <sstream>
+#include <string>
+
+namespace spindrift {
+
+struct IterativeSolverControls {
+    enum class Norm { Maximum, Average };
+    Scalar maxDensityError = Scalar(0.01);
+    Norm norm = Norm::Maximum;
+    int minIterations = 3;
+    int maxIterations = 100;
+
+    // 'solution' is sphSolution's `pressure` sub-dictionary (may be nullptr); the current
+    // members are the defaults.
+    void read(const Dictionary* solution) {
+        const std::string normDefault = norm == Norm::Maximum ? "maximum" : "average";
+        if (solution) {
+            const Dictionary& d = *solution;
+            maxDensityError = d.getOrDefault<double>("maxDensityError", maxDensityError);
+            norm = d.getWordOrDefault("densityErrorNorm", {"maximum", "average"}, normDefault) == "maximum"
+                       ? Norm::Maximum
+                       : Norm::Average;
+            minIterations = d.getOrDefault<int>("minIterations", minIterations);
+            maxIterations = d.getOrDefault<int>("maxIterations", maxIterations);
+            if (!(maxDensityError >= 0))
+                throw InputError(d.locationOf("maxDensityError"), "maxDensityError must not be negative",
+                                 "maxDensityError");
+            if (minIterations < 0)
+                throw InputError(d.locationOf("minIterations"), "minIterations must not be negative", "minIterations");
+            if (maxIterations < 1 || maxIterations < minIterations)
+                throw InputError(d.locationOf("maxIterations"),
+                                 "maxIterations must be at least 1 and at least minIterations", "maxIterations");
+            d.checkAllKeywordsUsed();
+        } else {
+            std::ostringstream eta;
+            eta << maxDensityError;
+            logDefaultOnce("sphSolution.pressure.maxDensityError", eta.str());
+            logDefaultOnce("sphSolution.pressure.densityErrorNorm", normDefault);
+            logDefaultOnce("sphSolution.pressure.minIterations", std::to_string(minIterations));
+            logDefaultOnce("sphSolution.pressure.maxIterations", std::to_string(maxIterations));
+        }
+    }
+
+    Scalar error(Scalar maxError, Scalar avgError) const { return norm == Norm::Maximum ? maxError : avgError; }
+
+    // After 'iterations' corrections with the given predicted errors: stop correcting?
+    bool done(int iterations, Scalar maxError, Scalar avgError) const {
+        if (iterations >= maxIterations) return true;
+        return iterations >= minIterations && error(maxError, avgError) <= maxDensityError;
+    }
+    bool converged(Scalar maxError, Scalar avgError) const {
+        return error(maxError, avgError) <= maxDensityError;
+    }
+};
+
+// Compression error max(0, ρ_i − ρ0)/ρ0 of a density array: maximum and average over the
+// particles (deterministic for any thread count).
+struct CompressionError {
+    Scalar max = 0, avg = 0;
+};
+
+inline CompressionError compressionError(const std::vector<Scalar>& rho, Scalar rho0) {
+    const std::size_t n = rho.size();
+    if (n == 0) return {};
+    auto e = [&](std::size_t i) { return std::max(Scalar(0), (rho[i] - rho0) / rho0); };
+    return {Scalar(parallelMax(n, e)), Scalar(deterministicSum(n, e) / double(n))};
+}
+
+} // namespace spindrift

@@ -1,0 +1,321 @@
+// Position-based density solver shared by the pressure plugins `pbf` (Macklin & Müller 2013)
+// and `relaxedPbf` (Duan et al. 2019, seed 002); MODELS.md "pbf and relaxedPbf". The two
+// plugins differ only in which options they expose and in their defaults.
+//
+// One call, on the step's neighbour lists, with the step's Δt:
+//   x* = x + Δt (v + Δt a_nonp)                                   (predicted positions)
+//   [warm start: λ_i = w λ_i^prev, x*_i += Δx_i(λ)]               (seed 002 §6.2)
+//   repeat:
+//     ρ*_i = m (W0 + Σ_j W_ij) + ρ0 Σ_b V_b W_ib,  C_i = ρ*_i/ρ0 − 1  [max(C_i, 0) if clamped]
+//     stop if iterations ≥ minIterations and the density error ≤ η, or at maxIterations
+//     Δλ_i = −C_i / (|∇_i C_i|² + Σ_j |∇_j C_i|² + ε),
+//         ∇_i C_i = V Σ_j ∇W_ij + Σ_b V_b ∇W_ib,  ∇_j C_i = −V ∇W_ij,  V = m/ρ0
+//     Δx_i = V Σ_j (Δλ_i + Δλ_j + s_corr,ij) ∇W_ij + Σ_b V_b Δλ_i ∇W_ib
+//     x*_i += (1 + ω) Δx_i,  λ_i += (1 + ω) Δλ_i                   (over-relaxation, seed 002 §3.1)
+//   a_i = a_nonp,i + (x*_i − x_i − Δt v_i − Δt² a_nonp,i)/Δt²     (so symplectic Euler gives x*)
+//
+// s_corr is an artificial pressure against clustering. Macklin & Müller add it in each of a
+// fixed number of iterations (2–4); this loop runs to a tolerance, and an s_corr added in every
+// iteration would move the converged state away from C = 0 (a hydrostatic column then never
+// reaches η), so it is added once per step, with the first correction.
+// Units. Macklin & Müller's ε and s_corr = −k (W(r)/W(Δq))ⁿ are numbers in their scene units;
+// here they are made resolution-independent with D0 = V² Σ_j |∇W_ij|², the denominator of a
+// prototype particle with a full lattice neighbourhood: ε = epsilon · D0 and
+// s_corr = −k (W(r)/W(Δq))ⁿ / D0, i.e. k is the constraint violation whose multiplier s_corr is.
+// Some ε is needed for stability (default D0): the Jacobi update scales a mode of the
+// constraint error by 1 − (1 + ω) μ/(1 + ε/D0), and μ, the mode's eigenvalue of J Jᵀ over D0,
+// reaches 2.1 (2D) and 2.8 (3D) for the cubic spline at h = 2 Δx, 2.9 and 4.9 at h = 2.6 Δx,
+// so with ε = 0 the shortest modes grow (|·| > 1); the density clamp damps what remains.
+// Wall particles (static) take part in the density and in the correction with volume V_b:
+// Ψ_b/ρ0 of the boundary model ("adaptive", Akinci's 1/Σ W_bk) or the fluid volume V
+// ("uniform"). The multiplier is kept between steps in the field pbfLambda as λ/Δt² (= −p/ρ0,
+// independent of Δt); the pressure field shows p = −ρ0 λ/Δt². When the sampled fluid starts
+// compressed against the walls (adaptive volumes on multi-layer walls), initialise() first
+// projects the initial positions onto the constraint, without velocities (logged).
+#pragma once
+
+#include "Dictionary.hpp"
+#include "IterativeSolverControls.hpp"
+#include "LatticePrototype.hpp"
+#include "Log.hpp"
+#include "ModelContext.hpp"
+#include "SphOperators.hpp"
+#include "WallVolumes.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace spindrift {
+
+struct PositionBasedOptions {
+    bool relaxed = false;              // relaxedPbf: omega and warmStart are read
+    Scalar omega = 0;                  // over-relaxation of the position update
+    Scalar warmStart = 0;              // λ starts at warmStart × the previous step's λ
+    bool clampDensity = false;         // C_i = max(ρ_i/ρ0 − 1, 0): only compression is corrected
+    bool adaptiveBoundaryVolume = false;
+    Scalar epsilon = Scalar(1);        // relaxation ε, in units of D0
+    Scalar sCorrK = Scalar(0.1);       // artificial pressure (tensile instability), 0 = off
+    int sCorrN = 4;
+    Scalar sCorrDeltaQ = Scalar(0.2);  // Δq in units of the support radius h
+
+    // Reads the options from the model's dictionary; the current values are the defaults.
+    void read(const Dictionary& d) {
+        if (relaxed) {
+            omega = d.getOrDefault<double>("omega", omega);
+            if (!(omega >= 0 && omega < 1))
+                throw InputError(d.locationOf("omega"), "omega (over-relaxation) must be in [0, 1)", "omega");
+            if (omega > Scalar(0.5))
+                log::warning(d.name() + ".omega " + std::to_string(omega) +
+                             ": Duan et al. (2019) report instability above 0.5");
+            warmStart = d.getOrDefault<double>("warmStart", warmStart);
+            if (!(warmStart >= 0 && warmStart <= 1))
+                throw InputError(d.locationOf("warmStart"), "warmStart must be in [0, 1]", "warmStart");
+        }
+        clampDensity = d.getOrDefault<bool>("clampDensity", clampDensity);
+        adaptiveBoundaryVolume = readAdaptiveBoundaryVolume(d, adaptiveBoundaryVolume);
+        epsilon = d.getOrDefault<double>("epsilon", epsilon);
+        if (!(epsilon > 0)) throw InputError(d.locationOf("epsilon"), "epsilon must be positive", "epsilon");
+        sCorrK = d.getOrDefault<double>("sCorrK", sCorrK);
+        if (!(sCorrK >= 0)) throw InputError(d.locationOf("sCorrK"), "sCorrK must not be negative", "sCorrK");
+        sCorrN = d.getOrDefault<int>("sCorrN", sCorrN);
+        if (sCorrN < 1) throw InputError(d.locationOf("sCorrN"), "sCorrN must be at least 1", "sCorrN");
+        sCorrDeltaQ = d.getOrDefault<double>("sCorrDeltaQ", sCorrDeltaQ);
+        if (!(sCorrDeltaQ >= 0 && sCorrDeltaQ < 1))
+            throw InputError(d.locationOf("sCorrDeltaQ"), "sCorrDeltaQ (in units of h) must be in [0, 1)",
+                             "sCorrDeltaQ");
+    }
+};
+
+class PositionBasedDensitySolver {
+public:
+    PositionBasedDensitySolver(const ModelContext& c, PositionBasedOptions options, IterativeSolverControls controls,
+                               std::string name)
+        : options_(options), controls_(controls), name_(std::move(name)), rho0_(c.physics.rho0) {
+        options_.read(c.dict);
+        controls_.read(c.solution);
+    }
+
+    void initialise(SphSystem& s) {
+        const Scalar m = s.fluid.particleMass();
+        volume_ = m / rho0_;
+        const LatticeGradientSums proto = latticeGradientSums(s.kernel, s.physics.particleSpacing, s.physics.dimension);
+        d0_ = volume_ * volume_ * Scalar(proto.gradSumSquared + proto.sumGradSquared);
+        if (!(d0_ > 0)) throw std::runtime_error(name_ + ": the prototype particle has no neighbours");
+        epsilon_ = options_.epsilon * d0_;
+        wDeltaQ_ = s.kernel.W(options_.sCorrDeltaQ * s.kernel.supportRadius());
+        lambda_ = &s.fluid.addScalar("pbfLambda", {false, true});
+        lambdaStart_ = &s.fluid.addScalar("pbfLambdaStart", {false, false});
+        // wall volumes (static walls; the boundary model has initialised before us)
+        wallVolume_ = wallVolumes(s, options_.adaptiveBoundaryVolume, name_);
+        s.soundSpeed = 0;
+        relaxInitialPositions(s);
+        std::ostringstream msg;
+        msg << name_ << ": omega " << options_.omega << ", warm start " << options_.warmStart << ", density "
+            << (options_.clampDensity ? "clamped to rho0 from below" : "not clamped") << ", wall volume "
+            << (options_.adaptiveBoundaryVolume ? "adaptive (Psi_b/rho0)" : "uniform (m/rho0)")
+            << ", epsilon " << epsilon_ << " (= " << options_.epsilon << " D0), s_corr k " << options_.sCorrK;
+        log::info(msg.str());
+    }
+
+    // ρ_i = m (W0 + Σ_j W_ij) + ρ0 Σ_b V_b W_ib at the current positions.
+    void computeDensity(SphSystem& s) const { densityWithWalls(s, s.fluid.position(), wallVolume_, s.fluid.density()); }
+
+    void solve(SphSystem& s, Scalar dt) {
+        const std::size_t n = s.fluid.size();
+        const auto& x = s.fluid.position();
+        const auto& v = s.fluid.velocity();
+        auto& a = s.fluid.acceleration();
+        auto& p = s.fluid.pressure();
+        auto& lambdaPerDt2 = *lambda_;
+        auto& start = *lambdaStart_;
+        predicted_.resize(n);
+        correction_.assign(n, Vec3::Zero());
+        step_.resize(n);
+        lambdaTotal_.assign(n, Scalar(0));
+        dLambda_.resize(n);
+        rhoPredicted_.resize(n);
+
+        // The warm start comes from the previous step, also when the state is evaluated again
+        // at the same time (the solver's initial evaluation, a restart).
+        if (s.time != lastSolveTime_) {
+            start.assign(lambdaPerDt2.begin(), lambdaPerDt2.end());
+            lastSolveTime_ = s.time;
+        }
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) predicted_[i] = x[i] + dt * (v[i] + dt * a[i]);
+
+        if (options_.warmStart > 0) {
+            const Scalar w = options_.warmStart * dt * dt;
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < n; ++i) lambdaTotal_[i] = w * start[i];
+            positionCorrection(s, lambdaTotal_, false);
+            applyCorrection(Scalar(1));
+        }
+
+        const Scalar relax = 1 + options_.omega;
+        int iterations = 0;
+        CompressionError err;
+        for (;;) {
+            constraintStep(s);
+            err = compressionError(rhoPredicted_, rho0_);
+            if (controls_.done(iterations, err.max, err.avg)) break;
+            positionCorrection(s, dLambda_, options_.sCorrK > 0 && iterations == 0);
+            applyCorrection(relax);
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < n; ++i) lambdaTotal_[i] += relax * dLambda_[i];
+            ++iterations;
+        }
+
+        const Scalar invDt2 = 1 / (dt * dt);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            a[i] += correction_[i] * invDt2;
+            lambdaPerDt2[i] = lambdaTotal_[i] * invDt2;
+            p[i] = -rho0_ * lambdaTotal_[i] * invDt2;
+        }
+        stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
+    }
+
+    const SolverStats& stats() const { return stats_; }
+    const IterativeSolverControls& controls() const { return controls_; }
+
+private:
+    // Adaptive wall volumes over-count multi-layer walls (WallVolumes.hpp), so the sampled
+    // fluid can start compressed beside them. The solver would remove that in its first step
+    // and turn the displacement into a velocity Δx/Δt; instead the initial positions are
+    // projected onto the density constraint here, without touching the velocities.
+    void relaxInitialPositions(SphSystem& s) {
+        const std::size_t n = s.fluid.size();
+        if (n == 0 || !s.hasBoundary()) return;
+        auto& x = s.fluid.position();
+        s.search.build(x);
+        predicted_ = x;
+        correction_.assign(n, Vec3::Zero());
+        step_.resize(n);
+        dLambda_.resize(n);
+        rhoPredicted_.resize(n);
+        constexpr int maxRelaxation = 2000, rebuildEvery = 20;
+        CompressionError start, err;
+        int k = 0;
+        for (;; ++k) {
+            if (k > 0 && k % rebuildEvery == 0) s.search.build(predicted_);
+            constraintStep(s);
+            err = compressionError(rhoPredicted_, rho0_);
+            if (k == 0) start = err;
+            if (controls_.converged(err.max, err.avg) || k == maxRelaxation) break;
+            positionCorrection(s, dLambda_, false);
+            applyCorrection(1 + options_.omega);
+        }
+        if (k == 0) return;
+        Scalar shift = 0;
+        for (std::size_t i = 0; i < n; ++i) shift = std::max(shift, correction_[i].norm());
+        x = predicted_;
+        s.search.build(x);
+        std::ostringstream msg;
+        msg << name_ << ": initial positions relaxed against the walls in " << k << " iterations (density error max "
+            << 100 * start.max << "% avg " << 100 * start.avg << "% -> max " << 100 * err.max << "% avg "
+            << 100 * err.avg << "%, largest shift " << shift / s.physics.particleSpacing << " particle spacings)";
+        if (!controls_.converged(err.max, err.avg)) log::warning(msg.str());
+        else log::info(msg.str());
+    }
+
+    // ρ*, C and Δλ at the predicted positions.
+    void constraintStep(const SphSystem& s) {
+        const auto& kt = s.kernel;
+        const Scalar m = s.fluid.particleMass(), rho0 = rho0_, V = volume_, eps = epsilon_;
+        const auto& ff = s.search.fluidNeighbours();
+        const auto& fb = s.search.boundaryNeighbours();
+        const auto& xb = s.boundary.position();
+        const auto& xs = predicted_;
+        const Scalar* vb = wallVolume_.data();
+        const bool walls = s.hasBoundary(), clamp = options_.clampDensity;
+        const std::size_t n = xs.size();
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            Scalar sum = kt.W0(), sq = 0;
+            Vec3 grad = Vec3::Zero();
+            forEachNeighbour(ff, xs, xs, i, [&](Index, const Vec3& rij, Scalar r2) {
+                const Scalar r = std::sqrt(r2);
+                sum += kt.W(r);
+                const Vec3 g = kt.gradW(rij, r);
+                grad += g;
+                sq += g.squaredNorm();
+            });
+            Scalar rho = m * sum;
+            grad *= V;
+            if (walls)
+                forEachNeighbour(fb, xs, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                    const Scalar r = std::sqrt(r2);
+                    rho += rho0 * vb[b] * kt.W(r);
+                    grad += vb[b] * kt.gradW(rib, r);
+                });
+            rhoPredicted_[i] = rho;
+            Scalar C = rho / rho0 - 1;
+            if (clamp) C = std::max(C, Scalar(0));
+            dLambda_[i] = -C / (grad.squaredNorm() + V * V * sq + eps);
+        }
+    }
+
+    // step_ = V Σ_j (l_i + l_j + s_corr) ∇W_ij + Σ_b V_b l_i ∇W_ib at the predicted positions.
+    void positionCorrection(const SphSystem& s, const std::vector<Scalar>& l, bool sCorr) {
+        const auto& kt = s.kernel;
+        const Scalar V = volume_;
+        const auto& ff = s.search.fluidNeighbours();
+        const auto& fb = s.search.boundaryNeighbours();
+        const auto& xb = s.boundary.position();
+        const auto& xs = predicted_;
+        const Scalar* vb = wallVolume_.data();
+        const bool walls = s.hasBoundary();
+        const Scalar k = options_.sCorrK / d0_, invWq = wDeltaQ_ > 0 ? 1 / wDeltaQ_ : 0;
+        const int nPow = options_.sCorrN;
+        const std::size_t n = xs.size();
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            const Scalar li = l[i];
+            Vec3 d = Vec3::Zero();
+            forEachNeighbour(ff, xs, xs, i, [&](Index j, const Vec3& rij, Scalar r2) {
+                const Scalar r = std::sqrt(r2);
+                Scalar coeff = li + l[j];
+                if (sCorr) {
+                    const Scalar q = kt.W(r) * invWq;
+                    Scalar qn = q;
+                    for (int e = 1; e < nPow; ++e) qn *= q;
+                    coeff -= k * qn;
+                }
+                d += coeff * kt.gradW(rij, r);
+            });
+            d *= V;
+            if (walls)
+                forEachNeighbour(fb, xs, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                    d += (vb[b] * li) * kt.gradW(rib, std::sqrt(r2));
+                });
+            step_[i] = d;
+        }
+    }
+
+    void applyCorrection(Scalar factor) {
+        const std::size_t n = predicted_.size();
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec3 d = factor * step_[i];
+            predicted_[i] += d;
+            correction_[i] += d;
+        }
+    }
+
+    PositionBasedOptions options_;
+    IterativeSolverControls controls_;
+    std::string name_;
+    Scalar rho0_;
+    Scalar volume_ = 0, d0_ = 0, epsilon_ = 0, wDeltaQ_ = 0;
+    std::vector<Scalar>* lambda_ = nullptr;      // field pbfLambda: λ/Δt² of the last step
+    std::vector<Scalar>* lambdaStart_ = nullptr; // field pbfLambdaStart: warm-start source
+    std::vector<Scalar> wallVolume_;
+    double lastSolveTime_ = std::numeric_limits<double>::quiet_NaN();
+    std::vector<Vec3> predicted_, correction_, step_;
+    std::vector<Scalar> lambdaTotal_, dLambda_, rhoPredicted_; // λ of this solve, its increment, ρ*
+    SolverStats stats_;
+};
+
+} // namespace spindrift

@@ -1,0 +1,126 @@
+// pcisph — predictive–corrective incompressible SPH (Solenthaler & Pajarola 2009, seed 003,
+// Algorithm 2 and eqs. 1–9; MODELS.md "pcisph").
+//
+// Inside one call, on the step's neighbour lists, with the step's Δt:
+//   p = 0, a_p = 0; repeat:
+//     v* = v + Δt (a_nonp + a_p),  x* = x + Δt v*                       (prediction)
+//     ρ*_i = m Σ_j W(x*_i − x*_j) + ρ0 Σ_b V_b W(x*_i − x_b)            (eq. 1, walls included)
+//     stop if iterations ≥ minIterations and the density error ≤ η, or at maxIterations
+//     p_i += δ (ρ*_i − ρ0)                                                (eqs. 8–9)
+//     a_p,i = −Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇_i W_ij − Σ_b ρ0 V_b 2 p_i/ρ_i² ∇_i W_ib   (eq. 3)
+// δ = −1/(β(−Σ∇W·Σ∇W − Σ∇W·∇W)), β = 2Δt²m²/ρ0², from a prototype particle with a full
+// neighbourhood on the case's lattice (recomputed whenever Δt changes). The density error is
+// the compression max(0, ρ* − ρ0)/ρ0; η, its norm (maximum by default: every particle, as in
+// the paper) and the iteration limits come from system/sphSolution `pressure { }`. The check
+// comes before each correction, so the returned acceleration is the one whose prediction met
+// η: with symplectic Euler the next step starts from the verified prediction (leapfrog: the
+// same for a constant Δt), up to neighbours that enter the support during the step (the
+// paper's §2.4.1 approximation). Negative pressures are clamped to zero (free surfaces) unless
+// clampNegativePressure no. Wall particles b (pressure mirrored, as the boundary model says)
+// have the volume V_b of WallVolumes.hpp: uniform m/ρ0 by default (exact beside the tutorials'
+// multi-layer lattice walls), or adaptive Ψ_b/ρ0 of the boundary model.
+//
+//   pressure { type pcisph; clampNegativePressure yes; boundaryVolume uniform; }
+//   sphSolution: pressure { maxDensityError 0.01; densityErrorNorm maximum;
+//                           minIterations 3; maxIterations 100; }
+#include "IterativeSolverControls.hpp"
+#include "LatticePrototype.hpp"
+#include "Log.hpp"
+#include "Plugin.hpp"
+#include "PressureModel.hpp"
+#include "SphOperators.hpp"
+#include "WallVolumes.hpp"
+
+#include <sstream>
+
+namespace {
+using namespace spindrift;
+
+class Pcisph final : public PressureModel {
+public:
+    explicit Pcisph(const ModelContext& c)
+        : rho0_(c.physics.rho0), clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)),
+          adaptiveWalls_(readAdaptiveBoundaryVolume(c.dict, false)) {
+        controls_.maxDensityError = Scalar(0.01);
+        controls_.norm = IterativeSolverControls::Norm::Maximum;
+        controls_.minIterations = 3;
+        controls_.maxIterations = 100;
+        controls_.read(c.solution);
+    }
+
+    void initialise(SphSystem& s) override {
+        prototype_ = latticeGradientSums(s.kernel, s.physics.particleSpacing, s.physics.dimension);
+        if (!(prototype_.sumGradSquared > 0))
+            throw std::runtime_error("pcisph: the prototype particle has no neighbours (supportRadius too small)");
+        wallVolume_ = wallVolumes(s, adaptiveWalls_, "pcisph");
+        s.soundSpeed = 0;
+        std::ostringstream m;
+        m << "pcisph: prototype particle with " << prototype_.neighbours << " lattice neighbours, "
+          << "sum grad W . grad W = " << prototype_.sumGradSquared << ", |sum grad W|^2 = " << prototype_.gradSumSquared;
+        log::info(m.str());
+    }
+
+    void computeDensity(SphSystem& s) override {
+        densityWithWalls(s, s.fluid.position(), wallVolume_, s.fluid.density());
+    }
+
+    void addPressureAcceleration(SphSystem& s, Scalar dt) override {
+        const std::size_t n = s.fluid.size();
+        const auto& x = s.fluid.position();
+        const auto& v = s.fluid.velocity();
+        const auto& rho = s.fluid.density();
+        auto& a = s.fluid.acceleration();
+        auto& p = s.fluid.pressure();
+        if (dt != deltaDt_) {
+            delta_ = Scalar(pcisphDelta(prototype_, dt, s.fluid.particleMass(), rho0_));
+            deltaDt_ = dt;
+        }
+        nonPressure_.assign(a.begin(), a.end());
+        pressureAcc_.assign(n, Vec3::Zero());
+        predicted_.resize(n);
+        rhoPredicted_.resize(n);
+        std::fill(p.begin(), p.end(), Scalar(0));
+
+        const Scalar rho0 = rho0_, delta = delta_;
+        const bool clamp = clampNegative_;
+        int iterations = 0;
+        CompressionError err;
+        for (;;) {
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < n; ++i)
+                predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + pressureAcc_[i]));
+            densityWithWalls(s, predicted_, wallVolume_, rhoPredicted_);
+            err = compressionError(rhoPredicted_, rho0);
+            if (controls_.done(iterations, err.max, err.avg)) break;
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < n; ++i) {
+                const Scalar pi = p[i] + delta * (rhoPredicted_[i] - rho0);
+                p[i] = clamp ? std::max(pi, Scalar(0)) : pi;
+            }
+            std::fill(pressureAcc_.begin(), pressureAcc_.end(), Vec3::Zero());
+            addPressureAccelerationWithWalls(s, wallVolume_, p, rho, pressureAcc_);
+            ++iterations;
+        }
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) a[i] = nonPressure_[i] + pressureAcc_[i];
+        stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
+    }
+
+    Scalar soundSpeed() const override { return 0; }
+    bool isIterative() const override { return true; }
+    SolverStats lastSolve() const override { return stats_; }
+
+private:
+    Scalar rho0_;
+    bool clampNegative_, adaptiveWalls_;
+    std::vector<Scalar> wallVolume_;
+    IterativeSolverControls controls_;
+    LatticeGradientSums prototype_;
+    Scalar delta_ = 0, deltaDt_ = -1;
+    std::vector<Vec3> nonPressure_, pressureAcc_, predicted_;
+    std::vector<Scalar> rhoPredicted_;
+    SolverStats stats_;
+};
+} // namespace
+
+SPINDRIFT_PLUGIN(PressureModel, "pressure", "pcisph", Pcisph)
