@@ -56,7 +56,7 @@ struct Scene {
 
 double maxNorm(const std::vector<Vec3>& a) {
     double m = 0;
-    for (const auto& v : a) m = std::max(m, v.norm());
+    for (const auto& v : a) m = std::max<double>(m, v.norm());
     return m;
 }
 
@@ -134,7 +134,7 @@ TEST(Isobaric, EqualsWcsphWhenDeltaVanishesAndPressuresDiffer) {
         const auto aw = sc.pressureAcceleration(*wcsph);
         const auto ai = sc.pressureAcceleration(*iso);
         double diff = 0;
-        for (std::size_t i = 0; i < aw.size(); ++i) diff = std::max(diff, (aw[i] - ai[i]).norm());
+        for (std::size_t i = 0; i < aw.size(); ++i) diff = std::max<double>(diff, (aw[i] - ai[i]).norm());
         EXPECT_GT(maxNorm(aw), 0.0);
         EXPECT_LT(diff, 1e-12 * maxNorm(aw)) << dim << "D";
         // with a finite δ the blend acts
@@ -143,7 +143,7 @@ TEST(Isobaric, EqualsWcsphWhenDeltaVanishesAndPressuresDiffer) {
         iso5->initialise(sc.s);
         const auto a5 = sc.pressureAcceleration(*iso5);
         double diff5 = 0;
-        for (std::size_t i = 0; i < aw.size(); ++i) diff5 = std::max(diff5, (aw[i] - a5[i]).norm());
+        for (std::size_t i = 0; i < aw.size(); ++i) diff5 = std::max<double>(diff5, (aw[i] - a5[i]).norm());
         EXPECT_GT(diff5, 1e-3 * maxNorm(aw)) << dim << "D";
     }
 }

@@ -58,7 +58,7 @@ struct Scene {
     }
     double avgCompression() const {
         double e = 0;
-        for (auto rho : s.fluid.density()) e += std::max(0.0, (rho - s.physics.rho0) / s.physics.rho0);
+        for (auto rho : s.fluid.density()) e += std::max<double>(0.0, (rho - s.physics.rho0) / s.physics.rho0);
         return e / s.fluid.size();
     }
 };

@@ -68,7 +68,7 @@ struct Scene {
     }
     double maxCompression() const {
         double e = 0;
-        for (auto rho : s.fluid.density()) e = std::max(e, (rho - s.physics.rho0) / s.physics.rho0);
+        for (auto rho : s.fluid.density()) e = std::max<double>(e, (rho - s.physics.rho0) / s.physics.rho0);
         return e;
     }
     // symplectic Euler with the accelerations just computed, then the density at the new state

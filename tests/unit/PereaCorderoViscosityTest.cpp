@@ -56,7 +56,7 @@ struct Scene {
     }
     double maxAcceleration() const {
         double m = 0;
-        for (const auto& a : s.fluid.acceleration()) m = std::max(m, a.norm());
+        for (const auto& a : s.fluid.acceleration()) m = std::max<double>(m, a.norm());
         return m;
     }
 };
@@ -243,8 +243,8 @@ TEST(Xsph, VelocityChangeOverAStepMatchesAHandComputation) {
             const double r = (x[i] - x[j]).norm();
             if (j != i && r < h) dv += c * 2 * m / (rho[i] + rho[j]) * sc.kernel->W(r) * (v[j] - v[i]);
         }
-        worst = std::max(worst, (dt * a[i] - dv).norm());
-        scale = std::max(scale, dv.norm());
+        worst = std::max<double>(worst, (dt * a[i] - dv).norm());
+        scale = std::max<double>(scale, dv.norm());
         power += v[i].dot(a[i]);
     }
     EXPECT_LT(worst, 1e-5 * scale);
