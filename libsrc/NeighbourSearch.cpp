@@ -1,6 +1,7 @@
 #include "NeighbourSearch.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace spindrift {
@@ -84,6 +85,16 @@ void UniformGrid::build(const std::vector<Vec3>& points) {
     sorted_.resize(n);
     std::vector<Index> fill(cellStart_.begin(), cellStart_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) sorted_[fill[cellOf_[i]]++] = Index(i);
+    cellX_.resize(n);
+    cellY_.resize(n);
+    cellZ_.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3& x = points[sorted_[k]];
+        cellX_[k] = x[0];
+        cellY_[k] = x[1];
+        cellZ_[k] = x[2];
+    }
 }
 
 void NeighbourSearch::setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax,
@@ -100,23 +111,82 @@ void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
     boundaryGrid_.build(boundaryPoints_);
 }
 
+namespace {
+// Fills 'list' for n query points with gather(i, out) → count, writing into 'out', which
+// has room for capacity(i) entries. Each thread handles a contiguous block of points in its
+// own buffer (kept in 'buffers' between calls); the blocks are concatenated in order, so the
+// lists do not depend on the thread count.
+template <class Capacity, class Gather>
+void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::vector<Index>>& buffers,
+                         Capacity&& capacity, Gather&& gather) {
+    list.offsets.resize(n + 1);
+    list.offsets[0] = 0;
+    int threads = 1;
+#ifdef _OPENMP
+    threads = omp_get_max_threads();
+#endif
+    if (int(buffers.size()) < threads) buffers.resize(threads);
+    std::vector<std::size_t> used(threads, 0);
+#pragma omp parallel num_threads(threads)
+    {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+#endif
+        const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+        std::vector<Index>& buffer = buffers[t];
+        std::size_t size = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::size_t room = capacity(i);
+            if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
+            const std::size_t count = gather(i, buffer.data() + size);
+            size += count;
+            list.offsets[i + 1] = std::uint32_t(count);
+        }
+        used[t] = size;
+    }
+    for (std::size_t i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
+    list.indices.resize(list.offsets[n]);
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+    for (int t = 0; t < threads; ++t) {
+        const std::size_t begin = n * t / threads;
+        std::copy_n(buffers[t].begin(), used[t], list.indices.begin() + list.offsets[begin]);
+    }
+}
+} // namespace
+
 void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
     fluidGrid_.build(fluid);
     const Periodicity* periodic = periodic_.any() ? &periodic_ : nullptr;
     fluidFluid_.periodic = fluidBoundary_.periodic = periodic;
-    buildNeighbourList(fluid.size(), fluidFluid_, [&](std::size_t i, auto&& push) {
-        fluidGrid_.forEachWithin(fluid[i], fluid, radius_, [&](Index j) {
-            if (j != i) push(j);
+    const Scalar r2 = radius_ * radius_;
+    if (periodic) {
+        buildNeighbourList(fluid.size(), fluidFluid_, [&](std::size_t i, auto&& push) {
+            fluidGrid_.forEachWithin(fluid[i], fluid, radius_, [&](Index j) {
+                if (j != i) push(j);
+            });
         });
-    });
+    } else {
+        gatherNeighbourList(
+            fluid.size(), fluidFluid_, threadBuffers_, [&](std::size_t i) { return fluidGrid_.candidateCount(fluid[i]); },
+            [&](std::size_t i, Index* out) { return fluidGrid_.gatherWithin(fluid[i], r2, Index(i), out); });
+    }
     if (boundaryPoints_.empty()) {
         fluidBoundary_.offsets.assign(fluid.size() + 1, 0);
         fluidBoundary_.indices.clear();
         return;
     }
-    buildNeighbourList(fluid.size(), fluidBoundary_, [&](std::size_t i, auto&& push) {
-        boundaryGrid_.forEachWithin(fluid[i], boundaryPoints_, radius_, push);
-    });
+    if (periodic) {
+        buildNeighbourList(fluid.size(), fluidBoundary_, [&](std::size_t i, auto&& push) {
+            boundaryGrid_.forEachWithin(fluid[i], boundaryPoints_, radius_, push);
+        });
+    } else {
+        constexpr Index none = std::numeric_limits<Index>::max();
+        gatherNeighbourList(
+            fluid.size(), fluidBoundary_, threadBuffers_,
+            [&](std::size_t i) { return boundaryGrid_.candidateCount(fluid[i]); },
+            [&](std::size_t i, Index* out) { return boundaryGrid_.gatherWithin(fluid[i], r2, none, out); });
+    }
 }
 
 std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) const {

@@ -10,6 +10,9 @@
 // (forEachNeighbour) apply the same minimum image — at no cost for non-periodic cases.
 //
 // Lists are compact (CSR): for particle i, indices[offsets[i] .. offsets[i+1]) excluding i.
+// The grid keeps its points in cell order as a structure of arrays, so the per-step list
+// build scans contiguous memory without branches (gatherWithin); each thread fills its own
+// persistent buffer for a contiguous block of particles.
 // Fluid–fluid and fluid–boundary lists are rebuilt each step; the static boundary grid is
 // built once and boundary–boundary pairs are never searched during the run.
 // sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
@@ -19,8 +22,11 @@
 #include "Types.hpp"
 
 #include <cmath>
-
+#include <type_traits>
 #include <vector>
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#include <immintrin.h>
+#endif
 
 namespace spindrift {
 
@@ -66,25 +72,39 @@ public:
     template <class F>
     void forEachWithin(const Vec3& p, const std::vector<Vec3>& points, Scalar radius, F&& f) const {
         const Scalar r2 = radius * radius;
-        int c[3];
-        cellCoords(p, c);
         if (periodic_.any()) {
+            int c[3];
+            cellCoords(p, c);
             forEachWithinPeriodic(p, c, points, r2, f);
             return;
         }
-        const int zLo = dim_ == 3 ? std::max(c[2] - 1, 0) : 0;
-        const int zHi = dim_ == 3 ? std::min(c[2] + 1, dims_[2] - 1) : 0;
-        const int yLo = std::max(c[1] - 1, 0), yHi = std::min(c[1] + 1, dims_[1] - 1);
-        const int xLo = std::max(c[0] - 1, 0), xHi = std::min(c[0] + 1, dims_[0] - 1);
-        for (int z = zLo; z <= zHi; ++z)
-            for (int y = yLo; y <= yHi; ++y) {
-                const std::size_t row = (std::size_t(z) * dims_[1] + y) * dims_[0];
-                const Index first = cellStart_[row + xLo], last = cellStart_[row + xHi + 1];
-                for (Index k = first; k < last; ++k) {
-                    const Index j = sorted_[k];
-                    if ((p - points[j]).squaredNorm() < r2) f(j);
-                }
+        RowRange rows[9];
+        const int nRows = candidateRows(p, rows);
+        for (int r = 0; r < nRows; ++r)
+            for (Index k = rows[r].first; k < rows[r].last; ++k) {
+                const Index j = sorted_[k];
+                if ((p - points[j]).squaredNorm() < r2) f(j);
             }
+    }
+
+    // Appends to out[0..) every point k of the built set with |p − x_k|² < r2, k ≠ self, and
+    // returns how many. 'out' must hold candidateCount(p) entries. Same points, in the same
+    // order, as forEachWithin on a non-periodic grid; the scan runs over the grid's own
+    // cell-ordered copy of the positions without branches (the hot loop of the step's lists).
+    std::size_t gatherWithin(const Vec3& p, Scalar r2, Index self, Index* out) const {
+        RowRange rows[9];
+        const int nRows = candidateRows(p, rows);
+        std::size_t count = 0;
+        for (int r = 0; r < nRows; ++r) count += scanRow(rows[r], p, r2, self, out + count);
+        return count;
+    }
+    // Number of points in the cells around p that gatherWithin scans.
+    std::size_t candidateCount(const Vec3& p) const {
+        RowRange rows[9];
+        const int nRows = candidateRows(p, rows);
+        std::size_t n = 0;
+        for (int r = 0; r < nRows; ++r) n += rows[r].last - rows[r].first;
+        return n;
     }
 
     void cellCoords(const Vec3& p, int c[3]) const;
@@ -92,6 +112,80 @@ public:
     std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
 
 private:
+    struct RowRange {
+        Index first, last; // slots in sorted_ of a row of up to three cells along x
+    };
+    // Writes the points of one row within r2 of p (except self) to out; returns how many. With
+    // AVX-512 eight (double) or sixteen (float) points are tested at once and their indices
+    // compressed; the scalar loop (the remainder, or all without AVX-512) is branch-free.
+    std::size_t scanRow(RowRange row, const Vec3& p, Scalar r2, Index self, Index* out) const {
+        const Scalar px = p[0], py = p[1], pz = p[2];
+        const Scalar* sx = cellX_.data();
+        const Scalar* sy = cellY_.data();
+        const Scalar* sz = cellZ_.data();
+        const Index* sorted = sorted_.data();
+        std::size_t count = 0;
+        Index k = row.first;
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+        if constexpr (std::is_same_v<Scalar, double>) {
+            const __m512d vx = _mm512_set1_pd(px), vy = _mm512_set1_pd(py), vz = _mm512_set1_pd(pz);
+            const __m512d vr2 = _mm512_set1_pd(r2);
+            const __m256i vself = _mm256_set1_epi32(int(self));
+            for (; k + 8 <= row.last; k += 8) {
+                const __m512d dx = _mm512_sub_pd(vx, _mm512_loadu_pd(sx + k));
+                const __m512d dy = _mm512_sub_pd(vy, _mm512_loadu_pd(sy + k));
+                const __m512d dz = _mm512_sub_pd(vz, _mm512_loadu_pd(sz + k));
+                const __m512d d2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
+                const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sorted + k));
+                const __mmask8 keep = _mm512_cmp_pd_mask(d2, vr2, _CMP_LT_OQ) & ~_mm256_cmpeq_epi32_mask(j, vself);
+                // compress in a register, store all lanes (the lanes past the kept ones are
+                // overwritten later; they stay within the candidates' room). A masked
+                // compress-store to memory is microcoded on some CPUs (AMD Zen 4): far slower.
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + count), _mm256_maskz_compress_epi32(keep, j));
+                count += std::size_t(__builtin_popcount(keep));
+            }
+        } else {
+            const __m512 vx = _mm512_set1_ps(px), vy = _mm512_set1_ps(py), vz = _mm512_set1_ps(pz);
+            const __m512 vr2 = _mm512_set1_ps(r2);
+            const __m512i vself = _mm512_set1_epi32(int(self));
+            for (; k + 16 <= row.last; k += 16) {
+                const __m512 dx = _mm512_sub_ps(vx, _mm512_loadu_ps(sx + k));
+                const __m512 dy = _mm512_sub_ps(vy, _mm512_loadu_ps(sy + k));
+                const __m512 dz = _mm512_sub_ps(vz, _mm512_loadu_ps(sz + k));
+                const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
+                const __m512i j = _mm512_loadu_si512(sorted + k);
+                const __mmask16 keep = _mm512_cmp_ps_mask(d2, vr2, _CMP_LT_OQ) & ~_mm512_cmpeq_epi32_mask(j, vself);
+                _mm512_storeu_si512(out + count, _mm512_maskz_compress_epi32(keep, j));
+                count += std::size_t(__builtin_popcount(keep));
+            }
+        }
+#endif
+        for (; k < row.last; ++k) {
+            const Scalar dx = px - sx[k], dy = py - sy[k], dz = pz - sz[k];
+            const Index j = sorted[k];
+            out[count] = j;
+            count += std::size_t((dx * dx + dy * dy + dz * dz < r2) & (j != self));
+        }
+        return count;
+    }
+
+    // The rows of cells around p (non-periodic grids): 9 in 3D, 3 in 2D.
+    int candidateRows(const Vec3& p, RowRange rows[9]) const {
+        int c[3];
+        cellCoords(p, c);
+        const int zLo = dim_ == 3 ? std::max(c[2] - 1, 0) : 0;
+        const int zHi = dim_ == 3 ? std::min(c[2] + 1, dims_[2] - 1) : 0;
+        const int yLo = std::max(c[1] - 1, 0), yHi = std::min(c[1] + 1, dims_[1] - 1);
+        const int xLo = std::max(c[0] - 1, 0), xHi = std::min(c[0] + 1, dims_[0] - 1);
+        int n = 0;
+        for (int z = zLo; z <= zHi; ++z)
+            for (int y = yLo; y <= yHi; ++y) {
+                const std::size_t row = (std::size_t(z) * dims_[1] + y) * dims_[0];
+                rows[n++] = {cellStart_[row + xLo], cellStart_[row + xHi + 1]};
+            }
+        return n;
+    }
+
     template <class F>
     void forEachWithinPeriodic(const Vec3& p, const int c[3], const std::vector<Vec3>& points, Scalar r2,
                                F&& f) const {
@@ -124,6 +218,7 @@ private:
     std::vector<Index> cellStart_; // size cells + 1
     std::vector<Index> sorted_;    // point indices bucketed by cell
     std::vector<Index> cellOf_;    // scratch
+    std::vector<Scalar> cellX_, cellY_, cellZ_; // positions in sorted_ order (structure of arrays)
 };
 
 class NeighbourSearch {
@@ -159,6 +254,7 @@ private:
     UniformGrid fluidGrid_, boundaryGrid_;
     std::vector<Vec3> boundaryPoints_;
     NeighbourList fluidFluid_, fluidBoundary_;
+    std::vector<std::vector<Index>> threadBuffers_; // kept between steps: no allocation per step
 };
 
 // Builds a CSR list for n query points, calling query(i, push) where push(j) appends a
