@@ -1,13 +1,14 @@
 #include "KernelTable.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace spindrift {
 
-template <class F> std::vector<KernelTable::Block> KernelTable::tabulate(F&& f) const {
+template <class F> std::vector<KernelTable::Block> KernelTable::tabulate(F&& f, double end) const {
     // Cubic Hermite on each interval [r0, r1] from values and one-sided slopes, computed in
     // double precision whatever Scalar is.
-    const double dr = double(h_) / intervals_;
+    const double dr = end / intervals_;
     const double e = dr * 1e-4;
     std::vector<Block> table(intervals_);
     for (int k = 0; k < intervals_; ++k) {
@@ -30,15 +31,27 @@ void KernelTable::build(const Kernel& kernel, int intervals) {
     intervals_ = intervals;
     invDr_ = Scalar(intervals) / h_;
     w0_ = kernel.W(0);
-    w_ = tabulate([&](double r) { return double(kernel.W(Scalar(r))); });
-    dw_ = tabulate([&](double r) { return double(kernel.dWdr(Scalar(r))); });
+    const double h = h_;
+    w_ = tabulate([&](double r) { return double(kernel.W(Scalar(r))); }, h);
+    dw_ = tabulate([&](double r) { return double(kernel.dWdr(Scalar(r))); }, h);
+    // in s = r²; the kink of the cubic spline at q = 1/2 (s = h²/4) is a node when 4 | intervals
+    const double h2 = h * h;
+    invDs_ = Scalar(intervals / h2);
+    nearIntervals_ = (intervals + 63) / 64; // s < h²/64: r < h/8
+    wSq_ = tabulate([&](double s) { return double(kernel.W(Scalar(std::sqrt(s)))); }, h2);
+    gradSq_ = tabulate(
+        [&](double s) {
+            const double r = std::sqrt(s);
+            return r > 0 ? double(kernel.dWdr(Scalar(r))) / r : 0.0;
+        },
+        h2);
     lap_.clear();
 }
 
 void KernelTable::enableLaplacian() {
     if (!lap_.empty()) return;
     if (!kernel_) throw std::logic_error("KernelTable::enableLaplacian before build");
-    lap_ = tabulate([&](double r) { return double(kernel_->laplacian(Scalar(r))); });
+    lap_ = tabulate([&](double r) { return double(kernel_->laplacian(Scalar(r))); }, h_);
 }
 
 } // namespace spindrift

@@ -5,11 +5,17 @@
 // interval, evaluated with Horner's rule. Node values come from the analytic kernel, node
 // slopes from one-sided differences inside each interval, so kinks at interval nodes (the
 // cubic spline at q = 1/2) are reproduced. Tests hold the table against the analytic kernel.
+//
+// Pair loops use the tables in the squared distance s = r² (WSq, gradWSq): W(√s) and
+// dW/dr(√s)/√s on equal intervals of [0, h²), so a pair costs neither a square root nor a
+// division. Below r = h/8, where √s is not smooth enough to interpolate and particles are
+// rarely found, they fall back to the tables in r.
 #pragma once
 
 #include "Kernel.hpp"
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace spindrift {
@@ -37,6 +43,27 @@ public:
     }
     Vec3 gradW(const Vec3& rij) const { return gradW(rij, rij.norm()); }
 
+    // The same from r² = |r_ij|² (no square root, no division on the hot path).
+    Scalar WSq(Scalar r2) const {
+        const Scalar s = r2 * invDs_;
+        const int k = static_cast<int>(s);
+        if (k >= intervals_ || r2 < Scalar(0)) return Scalar(0);
+        if (k < nearIntervals_) return W(std::sqrt(r2));
+        return horner(wSq_[k], s - Scalar(k));
+    }
+    // dW/dr / r as a function of r² (0 at r = 0): ∇_i W_ij = r_ij · gradFactorSq(r²).
+    Scalar gradFactorSq(Scalar r2) const {
+        const Scalar s = r2 * invDs_;
+        const int k = static_cast<int>(s);
+        if (k >= intervals_ || r2 < Scalar(0)) return Scalar(0);
+        if (k < nearIntervals_) {
+            const Scalar r = std::sqrt(r2);
+            return r > Scalar(0) ? dWdr(r) / r : Scalar(0);
+        }
+        return horner(gradSq_[k], s - Scalar(k));
+    }
+    Vec3 gradWSq(const Vec3& rij, Scalar r2) const { return rij * gradFactorSq(r2); }
+
     Scalar W0() const { return w0_; } // W(0), the self contribution
 
 private:
@@ -46,16 +73,16 @@ private:
         const Scalar s = r * invDr_;
         const int k = static_cast<int>(s);
         if (k >= intervals_ || r < Scalar(0)) return Scalar(0);
-        const Scalar t = s - Scalar(k);
-        const Block& c = table[k];
-        return c[0] + t * (c[1] + t * (c[2] + t * c[3]));
+        return horner(table[k], s - Scalar(k));
     }
-    template <class F> std::vector<Block> tabulate(F&& f) const;
+    static Scalar horner(const Block& c, Scalar t) { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }
+    // f on 'intervals_' equal intervals of [0, end)
+    template <class F> std::vector<Block> tabulate(F&& f, double end) const;
 
     const Kernel* kernel_ = nullptr; // for enableLaplacian(); owned by the caller
-    Scalar h_ = 0, invDr_ = 0, w0_ = 0;
-    int dim_ = 3, intervals_ = 0;
-    std::vector<Block> w_, dw_, lap_;
+    Scalar h_ = 0, invDr_ = 0, invDs_ = 0, w0_ = 0;
+    int dim_ = 3, intervals_ = 0, nearIntervals_ = 0; // r² intervals below (h/8)²
+    std::vector<Block> w_, dw_, lap_, wSq_, gradSq_;
 };
 
 } // namespace spindrift

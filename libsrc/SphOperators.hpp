@@ -30,57 +30,82 @@ inline void forEachNeighbour(const NeighbourList& list, const std::vector<Vec3>&
     }
 }
 
-// ρ_i = m (W(0) + Σ_j W_ij) + Σ_b Ψ_b W_ib at positions x (the current or predicted ones),
-// on the step's neighbour lists.
-inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
+// Wall particles in the pair sums: b counts with mass scale · weight[b] (Ψ_b of the boundary
+// model: scale 1; or a wall volume V_b: scale ρ0); no wall terms when weight is null.
+struct WallMasses {
+    const Scalar* weight = nullptr;
+    Scalar scale = 1;
+    // Ψ_b of the boundary model (none without one)
+    static WallMasses ofBoundaryModel(const SphSystem& s) {
+        return {s.boundaryMass && s.hasBoundary() ? s.boundaryMass->data() : nullptr, Scalar(1)};
+    }
+};
+
+// ρ_i = m (W(0) + Σ_j W_ij) + Σ_b M_b W_ib at positions x (the current or predicted ones), on
+// the step's neighbour lists.
+inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho,
+                             WallMasses walls) {
     const auto& kt = s.kernel;
     const Scalar m = s.fluid.particleMass();
     const auto& ff = s.search.fluidNeighbours();
     const auto& fb = s.search.boundaryNeighbours();
     const auto& xb = s.boundary.position();
-    const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
+    const Scalar* wb = walls.weight;
     const std::size_t n = x.size();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
         Scalar sum = kt.W0();
-        forEachNeighbour(ff, x, x, i, [&](Index, const Vec3&, Scalar r2) { sum += kt.W(std::sqrt(r2)); });
+        forEachNeighbour(ff, x, x, i, [&](Index, const Vec3&, Scalar r2) { sum += kt.WSq(r2); });
         Scalar wall = 0;
-        if (psi)
-            forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3&, Scalar r2) { wall += psi[b] * kt.W(std::sqrt(r2)); });
-        rho[i] = m * sum + wall;
+        if (wb) forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3&, Scalar r2) { wall += wb[b] * kt.WSq(r2); });
+        rho[i] = m * sum + walls.scale * wall;
     }
 }
+inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
+    summationDensity(s, x, rho, WallMasses::ofBoundaryModel(s));
+}
 
-// a_i −= Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇_i W_ij  +  wall term Ψ_b (p_i/ρ_i² + p_b/ρ_b²) ∇_i W_ib,
-// with p_b = p_i, ρ_b = ρ_i when the boundary mirrors pressure (else the wall's own fields).
+// a_i −= Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇_i W_ij  +  wall term M_b (p_i/ρ_i² + p_b/ρ_b²) ∇_i W_ib,
+// at positions x, with p_b = p_i, ρ_b = ρ_i when the boundary mirrors pressure (else the
+// wall's own fields). p/ρ² is taken once per particle (in 'pOverRho2', the caller's scratch
+// storage), not once per pair.
 inline void addSymmetricPressureAcceleration(const SphSystem& s, const std::vector<Vec3>& x,
                                              const std::vector<Scalar>& p, const std::vector<Scalar>& rho,
-                                             std::vector<Vec3>& a) {
+                                             std::vector<Vec3>& a, WallMasses walls,
+                                             std::vector<Scalar>& pOverRho2) {
     const auto& kt = s.kernel;
-    const Scalar m = s.fluid.particleMass();
+    const Scalar m = s.fluid.particleMass(), wallScale = walls.scale;
     const auto& ff = s.search.fluidNeighbours();
     const auto& fb = s.search.boundaryNeighbours();
     const auto& xb = s.boundary.position();
-    const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
+    const Scalar* wb = walls.weight;
     const bool mirrored = s.boundaryPressureMirrored;
     const auto& pb = s.boundary.pressure();
     const auto& rhob = s.boundary.density();
     const std::size_t n = x.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-        const Scalar pi = p[i] / (rho[i] * rho[i]);
-        Vec3 acc = Vec3::Zero();
-        forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-            const Scalar r = std::sqrt(r2);
-            acc -= (m * (pi + p[j] / (rho[j] * rho[j]))) * kt.gradW(rij, r);
-        });
-        if (psi)
-            forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                const Scalar r = std::sqrt(r2);
-                const Scalar pbTerm = mirrored ? pi : pb[b] / (rhob[b] * rhob[b]);
-                acc -= (psi[b] * (pi + pbTerm)) * kt.gradW(rib, r);
-            });
-        a[i] += acc;
+    pOverRho2.resize(n);
+    Scalar* q = pOverRho2.data();
+#pragma omp parallel
+    {
+#pragma omp for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) q[i] = p[i] / (rho[i] * rho[i]);
+#pragma omp for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            const Scalar qi = q[i];
+            Vec3 acc = Vec3::Zero();
+            forEachNeighbour(ff, x, x, i,
+                             [&](Index j, const Vec3& rij, Scalar r2) { acc -= (qi + q[j]) * kt.gradWSq(rij, r2); });
+            acc *= m;
+            if (wb) {
+                Vec3 wall = Vec3::Zero();
+                forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                    const Scalar qb = mirrored ? qi : pb[b] / (rhob[b] * rhob[b]);
+                    wall -= (wb[b] * (qi + qb)) * kt.gradWSq(rib, r2);
+                });
+                acc += wallScale * wall;
+            }
+            a[i] += acc;
+        }
     }
 }
 

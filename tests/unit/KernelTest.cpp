@@ -91,7 +91,7 @@ TEST_P(KernelTest, GradientMatchesFiniteDifference) {
         const double r = q * h;
         const double fd = (k->W(r + e) - k->W(r - e)) / (2 * e);
         worst = std::max(worst, std::abs(fd - k->dWdr(r)));
-        scale = std::max(scale, std::abs(k->dWdr(r)));
+        scale = std::max<double>(scale, std::abs(k->dWdr(r)));
     }
     EXPECT_LT(worst / scale, 1e-6);
 }
@@ -107,31 +107,41 @@ TEST_P(KernelTest, LaplacianMatchesFiniteDifference) {
         const double second = (k->W(r + e) - 2 * k->W(r) + k->W(r - e)) / (e * e);
         const double lap = second + (d - 1) * k->dWdr(r) / r;
         worst = std::max(worst, std::abs(lap - k->laplacian(r)));
-        scale = std::max(scale, std::abs(k->laplacian(r)));
+        scale = std::max<double>(scale, std::abs(k->laplacian(r)));
     }
     EXPECT_LT(worst / scale, 1e-5);
 }
 
-// The table reproduces W, dW/dr and ∇²W to 1e-6 relative to the largest value of each
-// (the relative error is taken against the maximum because W → 0 at the support).
+// The table reproduces W, dW/dr and ∇²W, and W and dW/dr from r², to 1e-6 relative to the
+// largest value of each (the relative error is taken against the maximum because W → 0 at
+// the support).
 TEST_P(KernelTest, TableMatchesAnalyticKernel) {
     auto k = make();
     KernelTable table(*k);
     table.enableLaplacian();
     const double h = k->supportRadius();
-    double errW = 0, errD = 0, errL = 0, maxW = 0, maxD = 0, maxL = 0;
+    double errW = 0, errD = 0, errL = 0, maxW = 0, maxD = 0, maxL = 0, errWSq = 0, errDSq = 0;
     for (int i = 0; i <= 100000; ++i) {
         const double r = h * i / 100000.0 * 0.999999;
-        errW = std::max(errW, std::abs(table.W(r) - k->W(r)));
-        errD = std::max(errD, std::abs(table.dWdr(r) - k->dWdr(r)));
-        errL = std::max(errL, std::abs(table.laplacian(r) - k->laplacian(r)));
-        maxW = std::max(maxW, std::abs(k->W(r)));
-        maxD = std::max(maxD, std::abs(k->dWdr(r)));
-        maxL = std::max(maxL, std::abs(k->laplacian(r)));
+        errW = std::max<double>(errW, std::abs(table.W(r) - k->W(r)));
+        errD = std::max<double>(errD, std::abs(table.dWdr(r) - k->dWdr(r)));
+        errL = std::max<double>(errL, std::abs(table.laplacian(r) - k->laplacian(r)));
+        maxW = std::max<double>(maxW, std::abs(k->W(r)));
+        maxD = std::max<double>(maxD, std::abs(k->dWdr(r)));
+        maxL = std::max<double>(maxL, std::abs(k->laplacian(r)));
+        // the squared-distance tables of the pair loops: W(r) and r · (dW/dr / r)
+        errWSq = std::max<double>(errWSq, std::abs(table.WSq(r * r) - k->W(r)));
+        // (at r = 0 the gradient is zero by definition, whatever dW/dr is there: the spiky kernel)
+        if (r > 0) errDSq = std::max<double>(errDSq, std::abs(table.gradFactorSq(r * r) * r - k->dWdr(r)));
     }
     EXPECT_LT(errW / maxW, 1e-6);
     EXPECT_LT(errD / maxD, 1e-6);
     EXPECT_LT(errL / maxL, 1e-6);
+    EXPECT_LT(errWSq / maxW, 1e-6);
+    EXPECT_LT(errDSq / maxD, 1e-6);
+    EXPECT_EQ(table.WSq(h * h), 0.0);
+    EXPECT_EQ(table.gradFactorSq(h * h), 0.0);
+    EXPECT_EQ(table.gradFactorSq(0), 0.0);
     EXPECT_EQ(table.W(h), 0.0);
     EXPECT_EQ(table.W(2 * h), 0.0);
     EXPECT_DOUBLE_EQ(table.W0(), k->W(0));
@@ -231,7 +241,7 @@ LatticeDeviation latticeDeviation(const Kernel& k, double spacing) {
                             if (r > 0) N += rij * (k.dWdr(r) / r) * volume * h;
                         }
                 worst.sum = std::max(worst.sum, std::abs(M - 1));
-                worst.gradient = std::max(worst.gradient, N.norm());
+                worst.gradient = std::max<double>(worst.gradient, N.norm());
             }
     return worst;
 }

@@ -31,7 +31,7 @@ public:
 #pragma omp parallel for schedule(static)
         for (std::size_t b = 0; b < x.size(); ++b) {
             Scalar sum = kt.W0();
-            forEachNeighbour(list, x, x, b, [&](Index, const Vec3&, Scalar r2) { sum += kt.W(std::sqrt(r2)); });
+            forEachNeighbour(list, x, x, b, [&](Index, const Vec3&, Scalar r2) { sum += kt.WSq(r2); });
             psi[b] = lattice_ ? s.fluid.particleMass() : rho0 / sum;
         }
         s.boundaryMass = &psi;

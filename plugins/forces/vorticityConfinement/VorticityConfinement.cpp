@@ -45,7 +45,7 @@ public:
         for (std::size_t i = 0; i < n; ++i) {
             Vec3 curl = Vec3::Zero();
             forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                curl += (m / rho[j]) * (v[i] - v[j]).cross(kt.gradW(rij, std::sqrt(r2)));
+                curl += (m / rho[j]) * (v[i] - v[j]).cross(kt.gradWSq(rij, r2));
             });
             w[i] = curl;
         }
@@ -56,7 +56,7 @@ public:
             const Scalar wi = w[i].norm();
             Vec3 eta = Vec3::Zero();
             forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                eta += ((m / rho[j]) * (w[j].norm() - wi)) * kt.gradW(rij, std::sqrt(r2));
+                eta += ((m / rho[j]) * (w[j].norm() - wi)) * kt.gradWSq(rij, r2);
             });
             // N = η/|η| is undefined where |ω| is uniform: a gradient below 1e-6 |ω_i|/h is
             // round-off, not a direction

@@ -236,9 +236,8 @@ private:
             Scalar sum = kt.W0(), sq = 0;
             Vec3 grad = Vec3::Zero();
             forEachNeighbour(ff, xs, xs, i, [&](Index, const Vec3& rij, Scalar r2) {
-                const Scalar r = std::sqrt(r2);
-                sum += kt.W(r);
-                const Vec3 g = kt.gradW(rij, r);
+                sum += kt.WSq(r2);
+                const Vec3 g = kt.gradWSq(rij, r2);
                 grad += g;
                 sq += g.squaredNorm();
             });
@@ -246,9 +245,8 @@ private:
             grad *= V;
             if (walls)
                 forEachNeighbour(fb, xs, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    const Scalar r = std::sqrt(r2);
-                    rho += rho0 * vb[b] * kt.W(r);
-                    grad += vb[b] * kt.gradW(rib, r);
+                    rho += rho0 * vb[b] * kt.WSq(r2);
+                    grad += vb[b] * kt.gradWSq(rib, r2);
                 });
             rhoPredicted_[i] = rho;
             Scalar C = rho / rho0 - 1;
@@ -275,20 +273,19 @@ private:
             const Scalar li = l[i];
             Vec3 d = Vec3::Zero();
             forEachNeighbour(ff, xs, xs, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                const Scalar r = std::sqrt(r2);
                 Scalar coeff = li + l[j];
                 if (sCorr) {
-                    const Scalar q = kt.W(r) * invWq;
+                    const Scalar q = kt.WSq(r2) * invWq;
                     Scalar qn = q;
                     for (int e = 1; e < nPow; ++e) qn *= q;
                     coeff -= k * qn;
                 }
-                d += coeff * kt.gradW(rij, r);
+                d += coeff * kt.gradWSq(rij, r2);
             });
             d *= V;
             if (walls)
                 forEachNeighbour(fb, xs, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    d += (vb[b] * li) * kt.gradW(rib, std::sqrt(r2));
+                    d += (vb[b] * li) * kt.gradWSq(rib, r2);
                 });
             step_[i] = d;
         }

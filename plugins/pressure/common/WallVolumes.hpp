@@ -39,58 +39,15 @@ inline std::vector<Scalar> wallVolumes(const SphSystem& s, bool adaptive, const 
     return v;
 }
 
+// Wall particles of volume V_b in the pair sums (mass ρ0 V_b).
+inline WallMasses wallMassesOf(const SphSystem& s, const std::vector<Scalar>& wallVolume) {
+    return {s.hasBoundary() ? wallVolume.data() : nullptr, s.physics.rho0};
+}
+
 // ρ_i = m (W0 + Σ_j W_ij) + ρ0 Σ_b V_b W_ib at positions x, on the step's neighbour lists.
 inline void densityWithWalls(const SphSystem& s, const std::vector<Vec3>& x, const std::vector<Scalar>& wallVolume,
                              std::vector<Scalar>& rho) {
-    const auto& kt = s.kernel;
-    const Scalar m = s.fluid.particleMass(), rho0 = s.physics.rho0;
-    const auto& ff = s.search.fluidNeighbours();
-    const auto& fb = s.search.boundaryNeighbours();
-    const auto& xb = s.boundary.position();
-    const Scalar* vb = wallVolume.data();
-    const bool walls = s.hasBoundary();
-    const std::size_t n = x.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-        Scalar sum = kt.W0();
-        forEachNeighbour(ff, x, x, i, [&](Index, const Vec3&, Scalar r2) { sum += kt.W(std::sqrt(r2)); });
-        Scalar wall = 0;
-        if (walls)
-            forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3&, Scalar r2) { wall += vb[b] * kt.W(std::sqrt(r2)); });
-        rho[i] = m * sum + rho0 * wall;
-    }
-}
-
-// a_i −= Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇_i W_ij + Σ_b ρ0 V_b (p_i/ρ_i² + p_b/ρ_b²) ∇_i W_ib at the
-// current positions, with p_b = p_i, ρ_b = ρ_i when the boundary model mirrors pressure.
-inline void addPressureAccelerationWithWalls(const SphSystem& s, const std::vector<Scalar>& wallVolume,
-                                             const std::vector<Scalar>& p, const std::vector<Scalar>& rho,
-                                             std::vector<Vec3>& a) {
-    const auto& kt = s.kernel;
-    const Scalar m = s.fluid.particleMass(), rho0 = s.physics.rho0;
-    const auto& x = s.fluid.position();
-    const auto& ff = s.search.fluidNeighbours();
-    const auto& fb = s.search.boundaryNeighbours();
-    const auto& xb = s.boundary.position();
-    const auto& pb = s.boundary.pressure();
-    const auto& rhob = s.boundary.density();
-    const Scalar* vb = wallVolume.data();
-    const bool walls = s.hasBoundary(), mirrored = s.boundaryPressureMirrored;
-    const std::size_t n = x.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-        const Scalar pi = p[i] / (rho[i] * rho[i]);
-        Vec3 acc = Vec3::Zero();
-        forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-            acc -= (m * (pi + p[j] / (rho[j] * rho[j]))) * kt.gradW(rij, std::sqrt(r2));
-        });
-        if (walls)
-            forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                const Scalar pbTerm = mirrored ? pi : pb[b] / (rhob[b] * rhob[b]);
-                acc -= (rho0 * vb[b] * (pi + pbTerm)) * kt.gradW(rib, std::sqrt(r2));
-            });
-        a[i] += acc;
-    }
+    summationDensity(s, x, rho, wallMassesOf(s, wallVolume));
 }
 
 } // namespace spindrift

@@ -78,16 +78,15 @@ public:
             Vec3 towardsWall = Vec3::Zero();
             if (psi)
                 forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    towardsWall += psi[b] * kt.gradW(rib, std::sqrt(r2));
+                    towardsWall += psi[b] * kt.gradWSq(rib, r2);
                 });
             Scalar alphaWeighted = 0, weight = 0; // Σ α_ij |∇W_ij·n|, Σ |∇W_ij·n|
             forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                const Scalar r = std::sqrt(r2);
-                if (!(r > 0)) return;
+                if (!(r2 > 0)) return;
                 const Scalar alpha = Scalar(blend.alpha(pi, p[j]));
                 const Scalar coeff = alpha * (p[j] - pi) * halfInvRho2 +
                                      Scalar(0.5) * (2 - alpha) * (Pi + p[j] / (rho[j] * rho[j]));
-                const Vec3 grad = (kt.dWdr(r) / r) * rij;
+                const Vec3 grad = kt.gradWSq(rij, r2);
                 acc -= (m * coeff) * grad;
                 const Scalar w = std::abs(grad.dot(towardsWall));
                 alphaWeighted += alpha * w;
@@ -106,7 +105,7 @@ public:
                         Pb = pb[b] / (rhob[b] * rhob[b]);
                     }
                     const Scalar coeff = alpha * (pWall - pi) * halfInvRho2 + Scalar(0.5) * beta * (Pi + Pb);
-                    acc -= (psi[b] * coeff) * kt.gradW(rib, std::sqrt(r2));
+                    acc -= (psi[b] * coeff) * kt.gradWSq(rib, r2);
                 });
             }
             a[i] += acc;

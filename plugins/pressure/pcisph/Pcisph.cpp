@@ -98,7 +98,7 @@ public:
                 p[i] = clamp ? std::max(pi, Scalar(0)) : pi;
             }
             std::fill(pressureAcc_.begin(), pressureAcc_.end(), Vec3::Zero());
-            addPressureAccelerationWithWalls(s, wallVolume_, p, rho, pressureAcc_);
+            addSymmetricPressureAcceleration(s, x, p, rho, pressureAcc_, wallMassesOf(s, wallVolume_), pOverRho2_);
             ++iterations;
         }
 #pragma omp parallel for schedule(static)
@@ -118,7 +118,7 @@ private:
     LatticeGradientSums prototype_;
     Scalar delta_ = 0, deltaDt_ = -1;
     std::vector<Vec3> nonPressure_, pressureAcc_, predicted_;
-    std::vector<Scalar> rhoPredicted_;
+    std::vector<Scalar> rhoPredicted_, pOverRho2_;
     SolverStats stats_;
 };
 } // namespace

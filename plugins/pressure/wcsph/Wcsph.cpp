@@ -27,13 +27,14 @@ public:
 
     void addPressureAcceleration(SphSystem& s, Scalar) override {
         addSymmetricPressureAcceleration(s, s.fluid.position(), s.fluid.pressure(), s.fluid.density(),
-                                         s.fluid.acceleration());
+                                         s.fluid.acceleration(), WallMasses::ofBoundaryModel(s), pOverRho2_);
     }
 
     Scalar soundSpeed() const override { return eos_.soundSpeed; }
 
 private:
     TaitEquationOfState eos_;
+    std::vector<Scalar> pOverRho2_; // scratch of the force pass
 };
 } // namespace
 

@@ -39,14 +39,13 @@ public:
         for (std::size_t i = 0; i < x.size(); ++i) {
             Vec3 acc = Vec3::Zero();
             forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3&, Scalar r2) {
-                const Scalar r = std::sqrt(r2);
-                const Scalar f = m * nu * (rho[i] + rho[j]) * r * kt.dWdr(r) / (rho[i] * rho[j] * (r2 + eps));
+                // r dW/dr = r² (dW/dr / r)
+                const Scalar f = m * nu * (rho[i] + rho[j]) * r2 * kt.gradFactorSq(r2) / (rho[i] * rho[j] * (r2 + eps));
                 acc += f * (v[i] - v[j]);
             });
             if (psi && wall != 0)
                 forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3&, Scalar r2) {
-                    const Scalar r = std::sqrt(r2);
-                    acc += (wall * psi[b] * 2 * nu * r * kt.dWdr(r) / (rho[i] * (r2 + eps))) * v[i];
+                    acc += (wall * psi[b] * 2 * nu * r2 * kt.gradFactorSq(r2) / (rho[i] * (r2 + eps))) * v[i];
                 });
             a[i] += acc;
         }

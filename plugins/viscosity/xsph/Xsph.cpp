@@ -41,11 +41,11 @@ public:
         for (std::size_t i = 0; i < x.size(); ++i) {
             Vec3 acc = Vec3::Zero();
             forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3&, Scalar r2) {
-                acc += (2 * m * kt.W(std::sqrt(r2)) / (rho[i] + rho[j])) * (v[j] - v[i]);
+                acc += (2 * m * kt.WSq(r2) / (rho[i] + rho[j])) * (v[j] - v[i]);
             });
             if (psi && wall != 0)
                 forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3&, Scalar r2) {
-                    acc -= (wall * psi[b] * kt.W(std::sqrt(r2)) / rho[i]) * v[i];
+                    acc -= (wall * psi[b] * kt.WSq(r2) / rho[i]) * v[i];
                 });
             a[i] += scale * acc;
         }
