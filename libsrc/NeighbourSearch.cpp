@@ -37,20 +37,6 @@ void UniformGrid::setup(Scalar cellSize, int dimension, const Vec3& domainMin, c
     sorted_.clear();
 }
 
-void UniformGrid::cellCoords(const Vec3& p, int c[3]) const {
-    for (int a = 0; a < 3; ++a) {
-        const Scalar s = (p[a] - origin_[a]) * invCell_[a];
-        if (periodic_.axis[a] && std::isfinite(s)) {
-            const long k = long(std::floor(s)) % dims_[a];
-            c[a] = int(k < 0 ? k + dims_[a] : k);
-            continue;
-        }
-        // clamp (also maps NaN to cell 0)
-        c[a] = s >= Scalar(0) ? (s < Scalar(dims_[a] - 1) ? int(s) : dims_[a] - 1) : 0;
-    }
-    if (dim_ == 2) c[2] = 0;
-}
-
 namespace {
 std::uint64_t spreadBits(std::uint64_t v) { // 21 bits -> every third bit
     v &= 0x1fffff;
@@ -112,13 +98,13 @@ void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
 }
 
 namespace {
-// Fills 'list' for n query points with gather(i, out) → count, writing into 'out', which
-// has room for capacity(i) entries. Each thread handles a contiguous block of points in its
-// own buffer (kept in 'buffers' between calls); the blocks are concatenated in order, so the
-// lists do not depend on the thread count.
-template <class Capacity, class Gather>
+// Fills 'list' for n query points with gather(i, reserve) → count, which writes point i's
+// neighbours to the array reserve(room) gives it. Each thread handles a contiguous block of
+// points in its own buffer (kept in 'buffers' between calls); the blocks are concatenated in
+// order, so the lists do not depend on the thread count.
+template <class Gather>
 void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::vector<Index>>& buffers,
-                         Capacity&& capacity, Gather&& gather) {
+                         Gather&& gather) {
     list.offsets.resize(n + 1);
     list.offsets[0] = 0;
     int threads = 1;
@@ -136,10 +122,12 @@ void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::ve
         const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
         std::vector<Index>& buffer = buffers[t];
         std::size_t size = 0;
-        for (std::size_t i = begin; i < end; ++i) {
-            const std::size_t room = capacity(i);
+        auto reserve = [&](std::size_t room) {
             if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
-            const std::size_t count = gather(i, buffer.data() + size);
+            return buffer.data() + size;
+        };
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::size_t count = gather(i, reserve);
             size += count;
             list.offsets[i + 1] = std::uint32_t(count);
         }
@@ -167,9 +155,9 @@ void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
             });
         });
     } else {
-        gatherNeighbourList(
-            fluid.size(), fluidFluid_, threadBuffers_, [&](std::size_t i) { return fluidGrid_.candidateCount(fluid[i]); },
-            [&](std::size_t i, Index* out) { return fluidGrid_.gatherWithin(fluid[i], r2, Index(i), out); });
+        gatherNeighbourList(fluid.size(), fluidFluid_, threadBuffers_, [&](std::size_t i, auto&& reserve) {
+            return fluidGrid_.gatherWithin(fluid[i], r2, Index(i), reserve);
+        });
     }
     if (boundaryPoints_.empty()) {
         fluidBoundary_.offsets.assign(fluid.size() + 1, 0);
@@ -182,10 +170,9 @@ void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
         });
     } else {
         constexpr Index none = std::numeric_limits<Index>::max();
-        gatherNeighbourList(
-            fluid.size(), fluidBoundary_, threadBuffers_,
-            [&](std::size_t i) { return boundaryGrid_.candidateCount(fluid[i]); },
-            [&](std::size_t i, Index* out) { return boundaryGrid_.gatherWithin(fluid[i], r2, none, out); });
+        gatherNeighbourList(fluid.size(), fluidBoundary_, threadBuffers_, [&](std::size_t i, auto&& reserve) {
+            return boundaryGrid_.gatherWithin(fluid[i], r2, none, reserve);
+        });
     }
 }
 

@@ -87,27 +87,36 @@ public:
             }
     }
 
-    // Appends to out[0..) every point k of the built set with |p − x_k|² < r2, k ≠ self, and
-    // returns how many. 'out' must hold candidateCount(p) entries. Same points, in the same
-    // order, as forEachWithin on a non-periodic grid; the scan runs over the grid's own
-    // cell-ordered copy of the positions without branches (the hot loop of the step's lists).
-    std::size_t gatherWithin(const Vec3& p, Scalar r2, Index self, Index* out) const {
+    // Writes every point k of the built set with |p − x_k|² < r2, k ≠ self, to the array
+    // reserve(candidates) returns (room for 'candidates' indices: the points in the cells
+    // around p), and returns how many. Same points, in the same order, as forEachWithin on a
+    // non-periodic grid; the scan runs over the grid's own cell-ordered copy of the positions
+    // without branches (the hot loop of the step's lists).
+    template <class Reserve> std::size_t gatherWithin(const Vec3& p, Scalar r2, Index self, Reserve&& reserve) const {
         RowRange rows[9];
         const int nRows = candidateRows(p, rows);
+        std::size_t candidates = 0;
+        for (int r = 0; r < nRows; ++r) candidates += rows[r].last - rows[r].first;
+        Index* out = reserve(candidates);
         std::size_t count = 0;
         for (int r = 0; r < nRows; ++r) count += scanRow(rows[r], p, r2, self, out + count);
         return count;
     }
-    // Number of points in the cells around p that gatherWithin scans.
-    std::size_t candidateCount(const Vec3& p) const {
-        RowRange rows[9];
-        const int nRows = candidateRows(p, rows);
-        std::size_t n = 0;
-        for (int r = 0; r < nRows; ++r) n += rows[r].last - rows[r].first;
-        return n;
-    }
 
-    void cellCoords(const Vec3& p, int c[3]) const;
+    // Cell of p (points outside the grid are clamped into the border cells).
+    void cellCoords(const Vec3& p, int c[3]) const {
+        for (int a = 0; a < 3; ++a) {
+            const Scalar s = (p[a] - origin_[a]) * invCell_[a];
+            if (periodic_.axis[a] && std::isfinite(s)) {
+                const long k = long(std::floor(s)) % dims_[a];
+                c[a] = int(k < 0 ? k + dims_[a] : k);
+                continue;
+            }
+            // clamp (also maps NaN to cell 0)
+            c[a] = s >= Scalar(0) ? (s < Scalar(dims_[a] - 1) ? int(s) : dims_[a] - 1) : 0;
+        }
+        if (dim_ == 2) c[2] = 0;
+    }
     std::uint64_t mortonCode(const Vec3& p) const;
     std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
 

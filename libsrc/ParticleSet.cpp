@@ -62,20 +62,29 @@ bool ParticleSet::hasField(const std::string& name) const {
     return name == "id" || findScalar(name) || findVector(name);
 }
 
-void ParticleSet::copyDataFrom(const ParticleSet& other) {
-    particleMass_ = other.particleMass_;
-    id_ = other.id_;
-    for (const auto& f : other.scalars_) addScalar(f->name, f->options) = f->data;
-    for (const auto& f : other.vectors_) addVector(f->name, f->options) = f->data;
-}
-
 namespace {
+// Both run every step (the last-good-state snapshot) or every few (the re-sort): in parallel.
+template <class T> void parallelCopy(std::vector<T>& to, const std::vector<T>& from) {
+    to.resize(from.size());
+    const std::size_t n = from.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
+}
 template <class T> void permuteVector(std::vector<T>& v, const std::vector<Index>& order) {
     std::vector<T> out(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) out[i] = v[order[i]];
+    const std::size_t n = order.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) out[i] = v[order[i]];
     v.swap(out);
 }
 } // namespace
+
+void ParticleSet::copyDataFrom(const ParticleSet& other) {
+    particleMass_ = other.particleMass_;
+    parallelCopy(id_, other.id_);
+    for (const auto& f : other.scalars_) parallelCopy(addScalar(f->name, f->options), f->data);
+    for (const auto& f : other.vectors_) parallelCopy(addVector(f->name, f->options), f->data);
+}
 
 void ParticleSet::permute(const std::vector<Index>& order) {
     permuteVector(id_, order);

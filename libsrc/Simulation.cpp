@@ -329,6 +329,20 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
     long worst = -1;
     int worstKind = 0; // 3 not finite, 2 outside, 1 density
     double worstDensity = blowUpDensityError_;
+    // a parallel look first (every step); the serial search for the worst particle only after
+    // a blow-up
+    bool any = false;
+    const double speed2 = blowUpSpeed_ * blowUpSpeed_;
+#pragma omp parallel for schedule(static) reduction(|| : any)
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        bool bad = !x[i].allFinite() || !v[i].allFinite() || !a[i].allFinite() || !std::isfinite(rho[i]) ||
+                   !std::isfinite(p[i]) || v[i].squaredNorm() > speed2 || (rho[i] - rho0) / rho0 > worstDensity;
+        for (int d = 0; d < dim; ++d)
+            bad = bad || (!periodic_.axis[d] && (x[i][d] < blowUpMin_[d] || x[i][d] > blowUpMax_[d]));
+        any = any || bad;
+    }
+    densityOnly = false;
+    if (!any) return {};
     for (std::size_t i = 0; i < x.size(); ++i) {
         if (!x[i].allFinite() || !v[i].allFinite() || !a[i].allFinite() || !std::isfinite(rho[i]) ||
             !std::isfinite(p[i])) {

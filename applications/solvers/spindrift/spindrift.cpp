@@ -6,6 +6,7 @@
 #include "Simulation.hpp"
 
 #include <boost/program_options.hpp>
+#include <sys/resource.h>
 #include <iostream>
 #ifdef _OPENMP
 #include <omp.h>
@@ -15,6 +16,13 @@ namespace po = boost::program_options;
 using namespace spindrift;
 
 namespace {
+
+// Peak resident memory of the process (Linux: ru_maxrss in KiB).
+long peakMemoryMiB() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1024;
+}
 
 void listModels(const std::string& only) {
     auto& registry = ModelRegistry::instance();
@@ -98,6 +106,7 @@ int main(int argc, char** argv) {
           << " us per particle-step), " << r.writes << " times written, max density error "
           << 100 * r.maxDensityError << "%";
         if (r.averageIterations > 0) o << ", average iterations " << r.averageIterations;
+        o << ", peak memory " << peakMemoryMiB() << " MiB";
         log::info(o.str());
         return 0;
     } catch (const InputError& e) {
