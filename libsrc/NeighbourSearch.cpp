@@ -104,7 +104,7 @@ namespace {
 // order, so the lists do not depend on the thread count.
 template <class Gather>
 void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::vector<Index>>& buffers,
-                         Gather&& gather) {
+                         const NeighbourSearch& search, Gather&& gather) {
     list.offsets.resize(n + 1);
     list.offsets[0] = 0;
     int threads = 1;
@@ -112,14 +112,15 @@ void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::ve
     threads = omp_get_max_threads();
 #endif
     if (int(buffers.size()) < threads) buffers.resize(threads);
-    std::vector<std::size_t> used(threads, 0);
+    std::vector<std::size_t> used(threads, 0), first(threads, 0);
 #pragma omp parallel num_threads(threads)
     {
         int t = 0;
 #ifdef _OPENMP
         t = omp_get_thread_num();
 #endif
-        const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+        const auto [begin, end] = search.workRange(t, threads);
+        first[t] = begin;
         std::vector<Index>& buffer = buffers[t];
         std::size_t size = 0;
         auto reserve = [&](std::size_t room) {
@@ -136,10 +137,8 @@ void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::ve
     for (std::size_t i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
     list.indices.resize(list.offsets[n]);
 #pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (int t = 0; t < threads; ++t) {
-        const std::size_t begin = n * t / threads;
-        std::copy_n(buffers[t].begin(), used[t], list.indices.begin() + list.offsets[begin]);
-    }
+    for (int t = 0; t < threads; ++t)
+        std::copy_n(buffers[t].begin(), used[t], list.indices.begin() + list.offsets[first[t]]);
 }
 } // namespace
 
@@ -155,13 +154,18 @@ void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
             });
         });
     } else {
-        gatherNeighbourList(fluid.size(), fluidFluid_, threadBuffers_, [&](std::size_t i, auto&& reserve) {
+        gatherNeighbourList(fluid.size(), fluidFluid_, threadBuffers_, *this, [&](std::size_t i, auto&& reserve) {
             return fluidGrid_.gatherWithin(fluid[i], r2, Index(i), reserve);
         });
     }
+    int threads = 1;
+#ifdef _OPENMP
+    threads = omp_get_max_threads();
+#endif
     if (boundaryPoints_.empty()) {
         fluidBoundary_.offsets.assign(fluid.size() + 1, 0);
         fluidBoundary_.indices.clear();
+        balanceWork(threads);
         return;
     }
     if (periodic) {
@@ -170,9 +174,34 @@ void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
         });
     } else {
         constexpr Index none = std::numeric_limits<Index>::max();
-        gatherNeighbourList(fluid.size(), fluidBoundary_, threadBuffers_, [&](std::size_t i, auto&& reserve) {
+        gatherNeighbourList(fluid.size(), fluidBoundary_, threadBuffers_, *this, [&](std::size_t i, auto&& reserve) {
             return boundaryGrid_.gatherWithin(fluid[i], r2, none, reserve);
         });
+    }
+    balanceWork(threads);
+}
+
+void NeighbourSearch::balanceWork(int threads) {
+    // work before particle i: its fluid and wall pairs plus a per-particle cost of about
+    // 'perParticle' pairs; thread t starts where that reaches t/T of the total
+    constexpr std::size_t perParticle = 8;
+    const std::size_t n = fluidFluid_.size();
+    auto work = [&](std::size_t i) {
+        return std::size_t(fluidFluid_.offsets[i]) + fluidBoundary_.offsets[i] + perParticle * i;
+    };
+    workRanges_.assign(threads + 1, n);
+    workRanges_[0] = 0;
+    const double total = double(work(n));
+    std::size_t lo = 0;
+    for (int t = 1; t < threads; ++t) {
+        const double target = total * t / threads;
+        std::size_t a = lo, b = n; // first i with work(i) >= target
+        while (a < b) {
+            const std::size_t mid = (a + b) / 2;
+            if (double(work(mid)) < target) a = mid + 1;
+            else b = mid;
+        }
+        workRanges_[t] = lo = a;
     }
 }
 

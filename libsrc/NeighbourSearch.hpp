@@ -23,7 +23,11 @@
 
 #include <cmath>
 #include <type_traits>
+#include <utility>
 #include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 #include <immintrin.h>
 #endif
@@ -249,6 +253,20 @@ public:
     // computed on demand, e.g. for boundary volumes at set-up.
     NeighbourList boundaryBoundaryList() const;
 
+    // Particle ranges of equal pair work for the threads of a parallel region: thread t of T
+    // takes [first, last) = workRange(t, T), with about the same number of fluid and wall
+    // neighbours as every other thread (the fluid near walls has more). From the lists of the
+    // last build; an even split when T differs from the thread count they were made for.
+    std::pair<std::size_t, std::size_t> workRange(int t, int threads) const {
+        const std::size_t n = fluidFluid_.size();
+        if (threads == int(workRanges_.size()) - 1 && workRanges_.back() == n)
+            return {workRanges_[t], workRanges_[t + 1]};
+        return {n * t / threads, n * (t + 1) / threads};
+    }
+
+    // The thread count the ranges were balanced for (the last build's).
+    int workRangeThreads() const { return int(workRanges_.size()) - 1; }
+
     const NeighbourList& fluidNeighbours() const { return fluidFluid_; }
     const NeighbourList& boundaryNeighbours() const { return fluidBoundary_; }
     const UniformGrid& fluidGrid() const { return fluidGrid_; }
@@ -264,7 +282,24 @@ private:
     std::vector<Vec3> boundaryPoints_;
     NeighbourList fluidFluid_, fluidBoundary_;
     std::vector<std::vector<Index>> threadBuffers_; // kept between steps: no allocation per step
+    std::vector<std::size_t> workRanges_;           // threads + 1 bounds (workRange)
+    void balanceWork(int threads);
 };
+
+// Calls f(i) for every fluid particle i in parallel, each thread over its workRange: for pair
+// loops over the step's lists (deterministic: every i is computed by one thread alone).
+template <class F> void forEachParticleBalanced(const NeighbourSearch& search, F&& f) {
+#pragma omp parallel
+    {
+        int t = 0, threads = 1;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+        threads = omp_get_num_threads();
+#endif
+        const auto [first, last] = search.workRange(t, threads);
+        for (std::size_t i = first; i < last; ++i) f(i);
+    }
+}
 
 // Builds a CSR list for n query points, calling query(i, push) where push(j) appends a
 // neighbour; parallel over contiguous blocks, deterministic.

@@ -51,15 +51,13 @@ inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std
     const auto& fb = s.search.boundaryNeighbours();
     const auto& xb = s.boundary.position();
     const Scalar* wb = walls.weight;
-    const std::size_t n = x.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    forEachParticleBalanced(s.search, [&](std::size_t i) {
         Scalar sum = kt.W0();
         forEachNeighbour(ff, x, x, i, [&](Index, const Vec3&, Scalar r2) { sum += kt.WSq(r2); });
         Scalar wall = 0;
         if (wb) forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3&, Scalar r2) { wall += wb[b] * kt.WSq(r2); });
         rho[i] = m * sum + walls.scale * wall;
-    }
+    });
 }
 inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
     summationDensity(s, x, rho, WallMasses::ofBoundaryModel(s));
@@ -85,28 +83,24 @@ inline void addSymmetricPressureAcceleration(const SphSystem& s, const std::vect
     const std::size_t n = x.size();
     pOverRho2.resize(n);
     Scalar* q = pOverRho2.data();
-#pragma omp parallel
-    {
-#pragma omp for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) q[i] = p[i] / (rho[i] * rho[i]);
-#pragma omp for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
-            const Scalar qi = q[i];
-            Vec3 acc = Vec3::Zero();
-            forEachNeighbour(ff, x, x, i,
-                             [&](Index j, const Vec3& rij, Scalar r2) { acc -= (qi + q[j]) * kt.gradWSq(rij, r2); });
-            acc *= m;
-            if (wb) {
-                Vec3 wall = Vec3::Zero();
-                forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    const Scalar qb = mirrored ? qi : pb[b] / (rhob[b] * rhob[b]);
-                    wall -= (wb[b] * (qi + qb)) * kt.gradWSq(rib, r2);
-                });
-                acc += wallScale * wall;
-            }
-            a[i] += acc;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) q[i] = p[i] / (rho[i] * rho[i]);
+    forEachParticleBalanced(s.search, [&](std::size_t i) {
+        const Scalar qi = q[i];
+        Vec3 acc = Vec3::Zero();
+        forEachNeighbour(ff, x, x, i,
+                         [&](Index j, const Vec3& rij, Scalar r2) { acc -= (qi + q[j]) * kt.gradWSq(rij, r2); });
+        acc *= m;
+        if (wb) {
+            Vec3 wall = Vec3::Zero();
+            forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                const Scalar qb = mirrored ? qi : pb[b] / (rhob[b] * rhob[b]);
+                wall -= (wb[b] * (qi + qb)) * kt.gradWSq(rib, r2);
+            });
+            acc += wallScale * wall;
         }
-    }
+        a[i] += acc;
+    });
 }
 
 } // namespace spindrift

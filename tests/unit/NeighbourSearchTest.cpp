@@ -100,6 +100,57 @@ TEST_P(NeighbourSearchTest, SortOrderIsAPermutationAlongTheCurve) {
     EXPECT_LT(consecutive, 0.15);
 }
 
+// The threads' particle ranges tile [0, n) in order and carry about equal pair work, although
+// the points near the wall (here: the first ones) have many more neighbours.
+TEST(NeighbourSearch, WorkRangesTileTheParticlesWithEqualWork) {
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<Scalar> u(0, 1);
+    std::vector<Vec3> fluid(6000), wall;
+    for (auto& p : fluid) p = Vec3(u(rng), u(rng), 0);
+    std::sort(fluid.begin(), fluid.end(), [](const Vec3& a, const Vec3& b) { return a[1] < b[1]; });
+    for (int k = 0; k < 3; ++k) // a dense wall along y = 0
+        for (int i = 0; i < 400; ++i) wall.push_back(Vec3(i / 400.0, -0.005 * k, 0));
+    NeighbourSearch search;
+    search.setup(0.04, 2, Vec3(0, -0.1, 0), Vec3(1, 1, 0));
+    search.setBoundary(wall);
+    search.build(fluid);
+    const auto& ff = search.fluidNeighbours();
+    const auto& fb = search.boundaryNeighbours();
+    for (int threads : {1, 2, 3, 4}) {
+        // a range of 'threads' as computed for the thread count of the last build, or an even split
+        std::size_t next = 0;
+        std::vector<double> work;
+        for (int t = 0; t < threads; ++t) {
+            const auto [first, last] = search.workRange(t, threads);
+            ASSERT_EQ(first, next) << threads << " threads";
+            ASSERT_LE(first, last);
+            double w = 0;
+            for (std::size_t i = first; i < last; ++i) w += ff.count(i) + fb.count(i);
+            work.push_back(w);
+            next = last;
+        }
+        EXPECT_EQ(next, fluid.size()) << threads << " threads";
+        if (threads == search.workRangeThreads()) {
+            const auto [lo, hi] = std::minmax_element(work.begin(), work.end());
+            EXPECT_LT(*hi - *lo, 0.05 * *hi) << threads << " threads";
+        }
+    }
+#ifdef _OPENMP
+    // balanced for the build's thread count
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(2);
+    search.build(fluid);
+    omp_set_num_threads(saved);
+    EXPECT_EQ(search.workRangeThreads(), 2);
+    const auto [a0, a1] = search.workRange(0, 2);
+    double w0 = 0, w1 = 0;
+    for (std::size_t i = a0; i < a1; ++i) w0 += ff.count(i) + fb.count(i);
+    for (std::size_t i = a1; i < fluid.size(); ++i) w1 += ff.count(i) + fb.count(i);
+    EXPECT_LT(std::abs(w0 - w1), 0.05 * std::max(w0, w1));
+    EXPECT_LT(a1, fluid.size() / 2); // the wall's side is the heavier one
+#endif
+}
+
 TEST(NeighbourSearch, NonFiniteAndFarAwayPointsAreHandled) {
     std::vector<Vec3> pts = {Vec3(0.5, 0.5, 0), Vec3(0.52, 0.5, 0), Vec3(1e9, 1e9, 0),
                              Vec3(1e9 + 0.01, 1e9, 0), Vec3(std::nan(""), 0, 0)};

@@ -230,9 +230,7 @@ private:
         const auto& xs = predicted_;
         const Scalar* vb = wallVolume_.data();
         const bool walls = s.hasBoundary(), clamp = options_.clampDensity;
-        const std::size_t n = xs.size();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
             Scalar sum = kt.W0(), sq = 0;
             Vec3 grad = Vec3::Zero();
             forEachNeighbour(ff, xs, xs, i, [&](Index, const Vec3& rij, Scalar r2) {
@@ -252,7 +250,7 @@ private:
             Scalar C = rho / rho0 - 1;
             if (clamp) C = std::max(C, Scalar(0));
             dLambda_[i] = -C / (grad.squaredNorm() + V * V * sq + eps);
-        }
+        });
     }
 
     // step_ = V Σ_j (l_i + l_j + s_corr) ∇W_ij + Σ_b V_b l_i ∇W_ib at the predicted positions.
@@ -267,9 +265,7 @@ private:
         const bool walls = s.hasBoundary();
         const Scalar k = options_.sCorrK / d0_, invWq = wDeltaQ_ > 0 ? 1 / wDeltaQ_ : 0;
         const int nPow = options_.sCorrN;
-        const std::size_t n = xs.size();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
             const Scalar li = l[i];
             Vec3 d = Vec3::Zero();
             forEachNeighbour(ff, xs, xs, i, [&](Index j, const Vec3& rij, Scalar r2) {
@@ -288,7 +284,7 @@ private:
                     d += (vb[b] * li) * kt.gradWSq(rib, r2);
                 });
             step_[i] = d;
-        }
+        });
     }
 
     void applyCorrection(Scalar factor) {

@@ -42,8 +42,7 @@ public:
         const Scalar wall = wallFactor_;
         // −m Π_ij ∇W_ij = 2 m α c h · v_ij·r_ij / ((r² + ε)(ρ_i + ρ_j)) ∇W_ij: one division a pair
         const Scalar fluidScale = 2 * m * ac * h, wallScale = wall * ac * h;
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < x.size(); ++i) {
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
             const Vec3 vi = v[i];
             const Scalar rhoi = rho[i];
             Vec3 acc = Vec3::Zero();
@@ -63,7 +62,7 @@ public:
                 acc += (wallScale / rhoi) * accWall;
             }
             a[i] += acc;
-        }
+        });
     }
 
 private:
