@@ -3,6 +3,7 @@
 #include "Log.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace spindrift {
@@ -81,7 +82,10 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
                 Vec3 lo = box.min, hi = box.max;
                 for (int a = 0; a < dim; ++a) {
                     const Scalar cells = std::round((hi[a] - lo[a]) / dx);
-                    if (std::abs(cells * dx - (hi[a] - lo[a])) > 1e-6 * dx) {
+                    // (the tolerance allows for the rounding of a float build as well)
+                    const Scalar tolerance = std::max(Scalar(1e-6) * dx, 64 * std::numeric_limits<Scalar>::epsilon() *
+                                                                             (std::abs(lo[a]) + std::abs(hi[a])));
+                    if (std::abs(cells * dx - (hi[a] - lo[a])) > tolerance) {
                         std::ostringstream s;
                         s << "walls." << name << ": size along " << "xyz"[a] << " is not a multiple of "
                           << "particleSpacing; the wall is placed at " << lo[a] + cells * dx;
