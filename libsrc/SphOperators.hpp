@@ -63,14 +63,13 @@ inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std
     summationDensity(s, x, rho, WallMasses::ofBoundaryModel(s));
 }
 
-// a_i −= Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇_i W_ij  +  wall term M_b (p_i/ρ_i² + p_b/ρ_b²) ∇_i W_ib,
-// at positions x, with p_b = p_i, ρ_b = ρ_i when the boundary mirrors pressure (else the
-// wall's own fields). p/ρ² is taken once per particle (in 'pOverRho2', the caller's scratch
-// storage), not once per pair.
-inline void addSymmetricPressureAcceleration(const SphSystem& s, const std::vector<Vec3>& x,
-                                             const std::vector<Scalar>& p, const std::vector<Scalar>& rho,
-                                             std::vector<Vec3>& a, WallMasses walls,
-                                             std::vector<Scalar>& pOverRho2) {
+// out(i, a_i) for every particle i, with a_i = −Σ_j m (q_i + q_j) ∇_i W_ij − Σ_b M_b (q_i + q_b) ∇_i W_ib
+// the symmetric pressure acceleration from q = p/ρ² at positions x; q_b = q_i when the
+// boundary mirrors pressure, else the wall's own p_b/ρ_b². 'out' lets a solver use a_i in the
+// same pass (PCISPH predicts the next positions with it).
+template <class Out>
+inline void symmetricPressureAcceleration(const SphSystem& s, const std::vector<Vec3>& x, const Scalar* q,
+                                          WallMasses walls, Out&& out) {
     const auto& kt = s.kernel;
     const Scalar m = s.fluid.particleMass(), wallScale = walls.scale;
     const auto& ff = s.search.fluidNeighbours();
@@ -80,11 +79,6 @@ inline void addSymmetricPressureAcceleration(const SphSystem& s, const std::vect
     const bool mirrored = s.boundaryPressureMirrored;
     const auto& pb = s.boundary.pressure();
     const auto& rhob = s.boundary.density();
-    const std::size_t n = x.size();
-    pOverRho2.resize(n);
-    Scalar* q = pOverRho2.data();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) q[i] = p[i] / (rho[i] * rho[i]);
     forEachParticleBalanced(s.search, [&](std::size_t i) {
         const Scalar qi = q[i];
         Vec3 acc = Vec3::Zero();
@@ -99,8 +93,22 @@ inline void addSymmetricPressureAcceleration(const SphSystem& s, const std::vect
             });
             acc += wallScale * wall;
         }
-        a[i] += acc;
+        out(i, acc);
     });
+}
+
+// a_i += the symmetric pressure acceleration of p and ρ (above). p/ρ² is taken once per
+// particle (in 'pOverRho2', the caller's scratch storage), not once per pair.
+inline void addSymmetricPressureAcceleration(const SphSystem& s, const std::vector<Vec3>& x,
+                                             const std::vector<Scalar>& p, const std::vector<Scalar>& rho,
+                                             std::vector<Vec3>& a, WallMasses walls,
+                                             std::vector<Scalar>& pOverRho2) {
+    const std::size_t n = x.size();
+    pOverRho2.resize(n);
+    Scalar* q = pOverRho2.data();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) q[i] = p[i] / (rho[i] * rho[i]);
+    symmetricPressureAcceleration(s, x, q, walls, [&](std::size_t i, const Vec3& acc) { a[i] += acc; });
 }
 
 } // namespace spindrift

@@ -161,9 +161,7 @@ public:
             err = compressionError(rhoPredicted_, rho0_);
             if (controls_.done(iterations, err.max, err.avg)) break;
             positionCorrection(s, dLambda_, options_.sCorrK > 0 && iterations == 0);
-            applyCorrection(relax);
-#pragma omp parallel for schedule(static)
-            for (std::size_t i = 0; i < n; ++i) lambdaTotal_[i] += relax * dLambda_[i];
+            applyCorrection(relax, true);
             ++iterations;
         }
 
@@ -287,13 +285,15 @@ private:
         });
     }
 
-    void applyCorrection(Scalar factor) {
+    // x* += factor · step, and (accumulateLambda) λ += factor · Δλ, in one pass.
+    void applyCorrection(Scalar factor, bool accumulateLambda = false) {
         const std::size_t n = predicted_.size();
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
             const Vec3 d = factor * step_[i];
             predicted_[i] += d;
             correction_[i] += d;
+            if (accumulateLambda) lambdaTotal_[i] += factor * dLambda_[i];
         }
     }
 

@@ -75,20 +75,27 @@ public:
             delta_ = Scalar(pcisphDelta(prototype_, dt, s.fluid.particleMass(), rho0_));
             deltaDt_ = dt;
         }
-        nonPressure_.assign(a.begin(), a.end());
-        pressureAcc_.assign(n, Vec3::Zero());
+        nonPressure_.resize(n);
+        pressureAcc_.resize(n);
         predicted_.resize(n);
         rhoPredicted_.resize(n);
-        std::fill(p.begin(), p.end(), Scalar(0));
+        pOverRho2_.resize(n);
+        // four parallel passes an iteration: density, error, pressure, acceleration + prediction
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            nonPressure_[i] = a[i];
+            pressureAcc_[i] = Vec3::Zero();
+            p[i] = 0;
+            predicted_[i] = x[i] + dt * (v[i] + dt * a[i]);
+        }
 
         const Scalar rho0 = rho0_, delta = delta_;
         const bool clamp = clampNegative_;
+        const WallMasses walls = wallMassesOf(s, wallVolume_);
+        Scalar* q = pOverRho2_.data();
         int iterations = 0;
         CompressionError err;
         for (;;) {
-#pragma omp parallel for schedule(static)
-            for (std::size_t i = 0; i < n; ++i)
-                predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + pressureAcc_[i]));
             densityWithWalls(s, predicted_, wallVolume_, rhoPredicted_);
             err = compressionError(rhoPredicted_, rho0);
             if (controls_.done(iterations, err.max, err.avg)) break;
@@ -96,9 +103,12 @@ public:
             for (std::size_t i = 0; i < n; ++i) {
                 const Scalar pi = p[i] + delta * (rhoPredicted_[i] - rho0);
                 p[i] = clamp ? std::max(pi, Scalar(0)) : pi;
+                q[i] = p[i] / (rho[i] * rho[i]);
             }
-            std::fill(pressureAcc_.begin(), pressureAcc_.end(), Vec3::Zero());
-            addSymmetricPressureAcceleration(s, x, p, rho, pressureAcc_, wallMassesOf(s, wallVolume_), pOverRho2_);
+            symmetricPressureAcceleration(s, x, q, walls, [&](std::size_t i, const Vec3& ap) {
+                pressureAcc_[i] = ap;
+                predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + ap));
+            });
             ++iterations;
         }
 #pragma omp parallel for schedule(static)

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# The speed benchmark of issue 7 (tutorials/benchmarks/Allrun) on a few steps: every method
+# runs on 1 and 2 threads and prints a complete row; the incompressible solvers do at least the
+# 3 iterations of the reference; a run gives the same max density error on 1 and 2 threads
+# (results do not depend on the thread count). Times are printed, never asserted.
+#   speedBenchmarkQuick.sh <bin dir>
+set -euo pipefail
+export SPINDRIFT_BIN=$1
+here=$(cd "$(dirname "$0")" && pwd)
+fail() { echo "FAIL: $*"; exit 1; }
+out=$("$here/../../tutorials/benchmarks/Allrun" -methods "wcsph pcisph pbf relaxedPbf" -threads "1 2" -endTime 0.006)
+echo "$out"
+! grep -q failed <<< "$out" || fail "a run failed"
+for method in wcsph pcisph pbf relaxedPbf; do
+    rows=$(awk -v m="$method" '$1 == m' <<< "$out")
+    [ "$(wc -l <<< "$rows")" -eq 2 ] || fail "$method: expected rows for 1 and 2 threads"
+    awk -v m="$method" '
+        $3 != 6859 { print "FAIL: " m ": particles " $3; bad = 1 }
+        !($5 > 0) || !($6 > 0) || !($10 > 0) { print "FAIL: " m ": no time or memory: " $0; bad = 1 }
+        m != "wcsph" && !($7 >= 3) { print "FAIL: " m ": fewer than 3 iterations: " $7; bad = 1 }
+        { err[NR] = $8 }
+        END { if (err[1] != err[2]) { print "FAIL: " m ": max density error differs with the thread count: " err[1] " vs " err[2]; bad = 1 }
+              exit bad }' <<< "$rows" || exit 1
+done
+echo "speed benchmark quick: OK"
