@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end checks of the incompressible pressure solvers (pcisph, pbf, relaxedPbf) through
+# End-to-end checks of the incompressible pressure solvers (pcisph, pbf, relaxedPbf, dfsph) through
 # the real binary:
 #   - the damBreak2D and damBreak3D tutorials swap solver by editing one word, and every
 #     alternative reads and sets up (-dryRun);
@@ -20,7 +20,7 @@ for tutorial in damBreak2D damBreak3D; do
     grep -q '^pressure *\$pressureSolvers\.wcsph;' "$tutorials/$tutorial/system/sphSchemes" \
         || fail "$tutorial: the default pressure solver must stay wcsph"
     [ -f "$tutorials/$tutorial/system/sphSolution" ] || fail "$tutorial has no system/sphSolution"
-    for model in pcisph pbf relaxedPbf wcsph; do
+    for model in pcisph pbf relaxedPbf dfsph wcsph; do
         rm -rf "$work/case"
         cp -r "$tutorials/$tutorial" "$work/case"
         swap "$work/case" $model

@@ -8,10 +8,10 @@ set -euo pipefail
 export SPINDRIFT_BIN=$1
 here=$(cd "$(dirname "$0")" && pwd)
 fail() { echo "FAIL: $*"; exit 1; }
-out=$("$here/../../tutorials/benchmarks/Allrun" -methods "wcsph pcisph pbf relaxedPbf" -threads "1 2" -endTime 0.006)
+out=$("$here/../../tutorials/benchmarks/Allrun" -methods "wcsph pcisph pbf relaxedPbf dfsph" -threads "1 2" -endTime 0.006)
 echo "$out"
 ! grep -q failed <<< "$out" || fail "a run failed"
-for method in wcsph pcisph pbf relaxedPbf; do
+for method in wcsph pcisph pbf relaxedPbf dfsph; do
     rows=$(awk -v m="$method" '$1 == m' <<< "$out")
     [ "$(wc -l <<< "$rows")" -eq 2 ] || fail "$method: expected rows for 1 and 2 threads"
     awk -v m="$method" '

@@ -1,0 +1,260 @@
+// dfsph — divergence-free SPH (Bender & Koschier 2015, "Divergence-Free Smoothed Particle
+// Hydrodynamics", SCA; 2017 TVCG, Alg. 1–3), the incompressible solver SPlisHSPlasH defaults
+// to. Two Jacobi solves on the step's neighbour lists, both on velocities (no prediction of
+// positions, no second neighbour search), with a per-particle factor
+//   α_i = ρ_i / (|Σ_j m ∇W_ij + Σ_b M_b ∇W_ib|² + Σ_j |m ∇W_ij|²)                 (eq. 8)
+// and the rate of density change Dρ_i/Dt = Σ_j m (v_i − v_j)·∇W_ij + Σ_b M_b v_i·∇W_ib (walls at rest).
+// A stiffness κ_i (= p_i/ρ_i) changes the velocities by
+//   v_i −= Δt [Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + Σ_b M_b κ_i/ρ_i ∇W_ib]
+// (the wall term once, as SPlisHSPlasH: the fluid column stays calm, but the pressure p = ρκ of
+// the particles touching a wall is about twice the physical one; mirroring κ_b = κ_i instead,
+// as the other solvers mirror p, gave the right wall pressure but a restless column).
+//   1. divergence solve (Alg. 2, run here at the start of the step, after the neighbour
+//      search, with the new ρ and α): κ_i = max(Dρ_i/Dt, 0) α_i / Δt until the average
+//      Δt·Dρ/Dt/ρ0 ≤ maxDivergenceError; particles with few neighbours (free surface) are left
+//      out, as in SPlisHSPlasH;
+//   2. v* = v + Δt a_nonp;
+//   3. density solve (Alg. 3): ρ*_i = ρ_i + Δt Dρ_i/Dt(v*), κ_i = max(ρ*_i − ρ0, 0) α_i / Δt²
+//      until the density error (norm and η of sphSolution, as pcisph) is met.
+// Positions do not change within the solves, so ∇W of every pair is computed once, with the
+// density, and the solver passes only stream it. Both warm-start from half of the last step's κ (fields dfsphKappa, dfsphKappaV: restarts
+// continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
+// Euler gives v_{n+1} = v*, x_{n+1} = x_n + Δt v*. Wall particles b have mass M_b = ρ0 V_b
+// (WallVolumes.hpp: uniform m/ρ0 by default, or the boundary model's adaptive volume).
+//
+//   pressure { type dfsph; warmStart 0.5; divergenceSolve yes; boundaryVolume uniform; }
+//   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average; minIterations 2;
+//                           maxIterations 100; maxDivergenceError 0.001; maxDivergenceIterations 100; }
+#include "IterativeSolverControls.hpp"
+#include "Plugin.hpp"
+#include "PressureModel.hpp"
+#include "SphOperators.hpp"
+#include "WallVolumes.hpp"
+
+namespace {
+using namespace spindrift;
+
+class Dfsph final : public PressureModel {
+public:
+    explicit Dfsph(const ModelContext& c)
+        : rho0_(c.physics.rho0), warmStart_(c.dict.getOrDefault<double>("warmStart", 0.5)),
+          divergenceSolve_(c.dict.getOrDefault<bool>("divergenceSolve", true)),
+          adaptiveWalls_(readAdaptiveBoundaryVolume(c.dict, false)) {
+        if (warmStart_ < 0 || warmStart_ > 1)
+            throw InputError(c.dict.locationOf("warmStart"), "warmStart must be in [0, 1]", "warmStart");
+        if (c.solution) {
+            maxDivergenceError_ = c.solution->getOrDefault<double>("maxDivergenceError", maxDivergenceError_);
+            maxDivergenceIterations_ = c.solution->getOrDefault<int>("maxDivergenceIterations", maxDivergenceIterations_);
+            if (!(maxDivergenceError_ >= 0))
+                throw InputError(c.solution->locationOf("maxDivergenceError"), "maxDivergenceError must not be negative",
+                                 "maxDivergenceError");
+            if (maxDivergenceIterations_ < 1)
+                throw InputError(c.solution->locationOf("maxDivergenceIterations"),
+                                 "maxDivergenceIterations must be at least 1", "maxDivergenceIterations");
+        }
+        controls_.maxDensityError = Scalar(0.001);
+        controls_.norm = IterativeSolverControls::Norm::Average;
+        controls_.minIterations = 2;
+        controls_.maxIterations = 100;
+        controls_.read(c.solution);
+    }
+
+    void initialise(SphSystem& s) override {
+        wallVolume_ = wallVolumes(s, adaptiveWalls_, "dfsph");
+        kappa_ = &s.fluid.addScalar("dfsphKappa", {false, true});
+        kappaV_ = &s.fluid.addScalar("dfsphKappaV", {false, true});
+        minNeighbours_ = s.physics.dimension == 3 ? 20 : 7;
+        s.soundSpeed = 0;
+    }
+
+    // ρ_i and α_i in one pass at the current positions.
+    void computeDensity(SphSystem& s) override {
+        const auto& kt = s.kernel;
+        const auto& x = s.fluid.position();
+        auto& rho = s.fluid.density();
+        const Scalar m = s.fluid.particleMass();
+        const WallMasses walls = wallMassesOf(s, wallVolume_);
+        const auto& ff = s.search.fluidNeighbours();
+        const auto& fb = s.search.boundaryNeighbours();
+        const auto& xb = s.boundary.position();
+        alpha_.resize(x.size());
+        gradFluid_.resize(ff.totalPairs());
+        gradWall_.resize(fb.totalPairs());
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
+            Scalar sum = kt.W0(), squares = 0;
+            Vec3 grad = Vec3::Zero();
+            Vec3* gi = gradFluid_.data() + ff.offsets[i];
+            forEachNeighbour(ff, x, x, i, [&](Index, const Vec3& rij, Scalar r2) {
+                sum += kt.WSq(r2);
+                const Vec3 g = kt.gradWSq(rij, r2);
+                *gi++ = g;
+                grad += g;
+                squares += g.squaredNorm();
+            });
+            Scalar wall = 0;
+            Vec3 gradWall = Vec3::Zero();
+            Vec3* gb = gradWall_.data() + fb.offsets[i];
+            if (walls.weight)
+                forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                    wall += walls.weight[b] * kt.WSq(r2);
+                    const Vec3 g = kt.gradWSq(rib, r2);
+                    *gb++ = g;
+                    gradWall += walls.weight[b] * g;
+                });
+            rho[i] = m * sum + walls.scale * wall;
+            const Vec3 g = m * grad + walls.scale * gradWall;
+            const Scalar denominator = g.squaredNorm() + m * m * squares;
+            alpha_[i] = denominator > Scalar(1e-9) * rho0_ * rho0_ / (kt.supportRadius() * kt.supportRadius())
+                            ? rho[i] / denominator
+                            : Scalar(0);
+        });
+    }
+
+    void addPressureAcceleration(SphSystem& s, Scalar dt) override {
+        const std::size_t n = s.fluid.size();
+        const auto& v = s.fluid.velocity();
+        const auto& rho = s.fluid.density();
+        auto& a = s.fluid.acceleration();
+        auto& p = s.fluid.pressure();
+        velocity_.assign(v.begin(), v.end());
+        rate_.resize(n);
+        kappaOverRho_.resize(n);
+        const Scalar invDt = 1 / dt, invDt2 = invDt * invDt;
+        const Scalar* alpha = alpha_.data();
+
+        // 1. divergence solve: remove the compressing part of the velocity field
+        divergenceIterations_ = 0;
+        if (divergenceSolve_) {
+            auto& kv = *kappaV_;
+            warmStartVelocities(s, kv, dt);
+            for (;;) {
+                densityRate(s, velocity_);
+                const auto& ff = s.search.fluidNeighbours();
+                const auto& fb = s.search.boundaryNeighbours();
+#pragma omp parallel for schedule(static)
+                for (std::size_t i = 0; i < n; ++i)
+                    rate_[i] = ff.count(i) + fb.count(i) >= minNeighbours_ ? std::max(rate_[i], Scalar(0)) : Scalar(0);
+                const double error = dt * deterministicSum(n, [&](std::size_t i) { return rate_[i]; }) / (double(n) * rho0_);
+                if (divergenceIterations_ >= maxDivergenceIterations_ ||
+                    (divergenceIterations_ >= 1 && error <= maxDivergenceError_))
+                    break;
+#pragma omp parallel for schedule(static)
+                for (std::size_t i = 0; i < n; ++i) {
+                    const Scalar k = rate_[i] * alpha[i] * invDt;
+                    kv[i] += k;
+                    kappaOverRho_[i] = k / rho[i];
+                }
+                applyStiffness(s, dt);
+                ++divergenceIterations_;
+            }
+        }
+
+        // 2. non-pressure accelerations
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) velocity_[i] += dt * a[i];
+
+        // 3. density solve: the predicted density back to ρ0
+        auto& k = *kappa_;
+        warmStartVelocities(s, k, dt);
+        int iterations = 0;
+        CompressionError err;
+        for (;;) {
+            densityRate(s, velocity_);
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < n; ++i) rate_[i] = rho[i] + dt * rate_[i]; // ρ*_i
+            err = compressionError(rate_, rho0_);
+            if (controls_.done(iterations, err.max, err.avg)) break;
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < n; ++i) {
+                const Scalar ki = std::max(rate_[i] - rho0_, Scalar(0)) * alpha[i] * invDt2;
+                k[i] += ki;
+                kappaOverRho_[i] = ki / rho[i];
+            }
+            applyStiffness(s, dt);
+            ++iterations;
+        }
+
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            a[i] = (velocity_[i] - v[i]) * invDt;
+            p[i] = rho[i] * k[i]; // κ is p/ρ (eq. 9)
+        }
+        stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
+    }
+
+    Scalar soundSpeed() const override { return 0; }
+    bool isIterative() const override { return true; }
+    SolverStats lastSolve() const override { return stats_; }
+
+private:
+    // Dρ_i/Dt of the velocities u into rate_ (gradients cached by computeDensity).
+    void densityRate(const SphSystem& s, const std::vector<Vec3>& u) {
+        const Scalar m = s.fluid.particleMass();
+        const WallMasses walls = wallMassesOf(s, wallVolume_);
+        const auto& ff = s.search.fluidNeighbours();
+        const auto& fb = s.search.boundaryNeighbours();
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
+            const Vec3 ui = u[i];
+            Scalar fluid = 0;
+            for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k)
+                fluid += (ui - u[ff.indices[k]]).dot(gradFluid_[k]);
+            Scalar wall = 0;
+            if (walls.weight)
+                for (std::uint32_t k = fb.offsets[i]; k < fb.offsets[i + 1]; ++k)
+                    wall += walls.weight[fb.indices[k]] * ui.dot(gradWall_[k]);
+            rate_[i] = m * fluid + walls.scale * wall;
+        });
+    }
+
+    // velocity_ −= Δt [Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + Σ_b M_b κ_i/ρ_i ∇W_ib], κ/ρ in kappaOverRho_.
+    void applyStiffness(const SphSystem& s, Scalar dt) {
+        const Scalar m = s.fluid.particleMass();
+        const WallMasses walls = wallMassesOf(s, wallVolume_);
+        const auto& ff = s.search.fluidNeighbours();
+        const auto& fb = s.search.boundaryNeighbours();
+        const Scalar* kr = kappaOverRho_.data();
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
+            const Scalar ki = kr[i];
+            Vec3 dv = Vec3::Zero();
+            for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k)
+                dv += (ki + kr[ff.indices[k]]) * gradFluid_[k];
+            dv *= m;
+            if (walls.weight) {
+                Vec3 wall = Vec3::Zero();
+                for (std::uint32_t k = fb.offsets[i]; k < fb.offsets[i + 1]; ++k)
+                    wall += walls.weight[fb.indices[k]] * gradWall_[k];
+                dv += (walls.scale * ki) * wall;
+            }
+            velocity_[i] -= dt * dv;
+        });
+    }
+
+    // Applies warmStart × the last step's κ to velocity_ and keeps it as this step's start.
+    void warmStartVelocities(const SphSystem& s, std::vector<Scalar>& kappa, Scalar dt) {
+        const std::size_t n = kappa.size();
+        const auto& rho = s.fluid.density();
+        const Scalar w = warmStart_;
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            kappa[i] *= w;
+            kappaOverRho_[i] = kappa[i] / rho[i];
+        }
+        if (w > 0) applyStiffness(s, dt);
+    }
+
+    Scalar rho0_, warmStart_;
+    bool divergenceSolve_, adaptiveWalls_;
+    Scalar maxDivergenceError_ = Scalar(0.001);
+    int maxDivergenceIterations_ = 100, divergenceIterations_ = 0;
+    std::size_t minNeighbours_ = 20;
+    IterativeSolverControls controls_;
+    std::vector<Scalar> wallVolume_, alpha_, rate_, kappaOverRho_;
+    std::vector<Scalar>* kappa_ = nullptr;  // field dfsphKappa: κ of the density solve
+    std::vector<Scalar>* kappaV_ = nullptr; // field dfsphKappaV: κ of the divergence solve
+    std::vector<Vec3> velocity_;
+    std::vector<Vec3> gradFluid_, gradWall_; // ∇W of every pair of the step's lists (positions fixed in a step)
+    SolverStats stats_;
+};
+} // namespace
+
+SPINDRIFT_PLUGIN(PressureModel, "pressure", "dfsph", Dfsph)
