@@ -83,4 +83,25 @@ void fillLattice(SphSystem& s, const Kernel& kernel, const Vec3& lo, const Vec3&
     s.search.build(s.fluid.position());
 }
 
+BlockScene::BlockScene(int dim, const std::string& kernelName, double supportFactor) {
+    s.physics = physicsFor(dim, 0.01, supportFactor);
+    kernel = createModel<Kernel>("type " + kernelName + ";", s.physics);
+}
+
+Vec3 BlockScene::block(int n, double scale) {
+    const double dx = s.physics.particleSpacing;
+    const Vec3 hi(n * dx, n * dx, s.physics.dimension == 3 ? n * dx : 0);
+    fillLattice(s, *kernel, Vec3::Zero(), hi);
+    const Vec3 c = 0.5 * hi;
+    for (auto& x : s.fluid.position()) x = c + scale * (x - c);
+    s.search.build(s.fluid.position());
+    return c;
+}
+
+double BlockScene::maxCompression() const {
+    double e = 0;
+    for (auto rho : s.fluid.density()) e = std::max<double>(e, (rho - s.physics.rho0) / s.physics.rho0);
+    return e;
+}
+
 } // namespace spindrift::test

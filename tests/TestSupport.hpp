@@ -46,4 +46,25 @@ std::unique_ptr<Base> createModel(const std::string& dictText, const PhysicalPar
 // neighbour search set up over a generous domain.
 void fillLattice(SphSystem& system, const Kernel& kernel, const Vec3& lo, const Vec3& hi);
 
+// A block of fluid on a lattice for the pressure solvers' tests: n^dim particles of spacing
+// 0.01, positions scaled by 'scale' about the block centre (scale < 1: compressed), and models
+// made from sphSchemes / sphSolution text (the dictionaries outlive the models).
+struct BlockScene {
+    SphSystem s;
+    std::unique_ptr<Kernel> kernel;
+    std::vector<std::unique_ptr<Dictionary>> dicts;
+    BlockScene(int dim, const std::string& kernelName, double supportFactor);
+    Vec3 block(int n, double scale); // returns the block centre; neighbour lists built
+    template <class Base> std::unique_ptr<Base> model(const std::string& schemes, const std::string& solution = "") {
+        dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(schemes, "sphSchemes.pressure")));
+        const Dictionary& d = *dicts.back();
+        dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(solution, "sphSolution.pressure")));
+        auto m = ModelRegistry::instance().create<Base>(d, s.physics, dicts.back().get());
+        m->initialise(s);
+        return m;
+    }
+    // max over the particles of (ρ − ρ0)/ρ0
+    double maxCompression() const;
+};
+
 } // namespace spindrift::test

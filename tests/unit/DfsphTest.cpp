@@ -17,36 +17,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Scene {
-    SphSystem s;
-    std::unique_ptr<Kernel> kernel;
-    std::vector<std::unique_ptr<Dictionary>> dicts; // outlive the models
-    explicit Scene(int dim) {
-        s.physics = test::physicsFor(dim, 0.01, 2.6);
-        kernel = test::createModel<Kernel>("type wendlandC2;", s.physics);
-    }
-    // n^dim lattice block, positions scaled by 'scale' about the block centre
-    Vec3 block(int n, double scale) {
-        const double dx = s.physics.particleSpacing;
-        const Vec3 hi(n * dx, n * dx, s.physics.dimension == 3 ? n * dx : 0);
-        test::fillLattice(s, *kernel, Vec3::Zero(), hi);
-        const Vec3 c = 0.5 * hi;
-        for (auto& x : s.fluid.position()) x = c + scale * (x - c);
-        s.search.build(s.fluid.position());
-        return c;
-    }
+struct Scene : test::BlockScene {
+    explicit Scene(int dim) : BlockScene(dim, "wendlandC2", 2.6) {}
     std::unique_ptr<PressureModel> pressure(const std::string& schemes, const std::string& solution) {
-        dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(schemes, "sphSchemes.pressure")));
-        const Dictionary& d = *dicts.back();
-        dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(solution, "sphSolution.pressure")));
-        auto p = ModelRegistry::instance().create<PressureModel>(d, s.physics, dicts.back().get());
-        p->initialise(s);
-        return p;
-    }
-    double maxCompression() const {
-        double e = 0;
-        for (auto rho : s.fluid.density()) e = std::max<double>(e, (rho - s.physics.rho0) / s.physics.rho0);
-        return e;
+        return model<PressureModel>(schemes, solution);
     }
     // average positive Σ_j m (v_i − v_j)·∇W_ij over the particles with a full neighbourhood
     double compressionRate(const std::vector<Vec3>& v) const {

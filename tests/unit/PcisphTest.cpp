@@ -28,31 +28,10 @@ double cubicSplineDW(double r, double h, int dim) {
     return -6 * sigma * (1 - q) * (1 - q) / h;
 }
 
-struct Scene {
-    SphSystem s;
-    std::unique_ptr<Kernel> kernel;
-    std::vector<std::unique_ptr<Dictionary>> dicts; // outlive the models
-    Scene(int dim, const std::string& kernelName, double supportFactor) {
-        s.physics = test::physicsFor(dim, 0.01, supportFactor);
-        kernel = test::createModel<Kernel>("type " + kernelName + ";", s.physics);
-    }
-    // n^dim lattice block, positions scaled by 'scale' about the block centre
-    void block(int n, double scale) {
-        const double dx = s.physics.particleSpacing;
-        const int dim = s.physics.dimension;
-        const Vec3 hi(n * dx, n * dx, dim == 3 ? n * dx : 0);
-        test::fillLattice(s, *kernel, Vec3::Zero(), hi);
-        const Vec3 c = 0.5 * hi;
-        for (auto& x : s.fluid.position()) x = c + scale * (x - c);
-        s.search.build(s.fluid.position());
-    }
+struct Scene : test::BlockScene {
+    Scene(int dim, const std::string& kernelName, double supportFactor) : BlockScene(dim, kernelName, supportFactor) {}
     std::unique_ptr<PressureModel> pressure(const std::string& schemes, const std::string& solution) {
-        dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(schemes, "sphSchemes.pressure")));
-        const Dictionary& d = *dicts.back();
-        dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(solution, "sphSolution.pressure")));
-        auto p = ModelRegistry::instance().create<PressureModel>(d, s.physics, dicts.back().get());
-        p->initialise(s);
-        return p;
+        return model<PressureModel>(schemes, solution);
     }
     // particles at least 'layers' spacings inside the block (a full neighbourhood)
     std::vector<std::size_t> interior(int n, int layers) const {
@@ -65,11 +44,6 @@ struct Scene {
             if (d.maxCoeff() < half) ids.push_back(i);
         }
         return ids;
-    }
-    double maxCompression() const {
-        double e = 0;
-        for (auto rho : s.fluid.density()) e = std::max<double>(e, (rho - s.physics.rho0) / s.physics.rho0);
-        return e;
     }
     // symplectic Euler with the accelerations just computed, then the density at the new state
     void advance(PressureModel& p, double dt) {
