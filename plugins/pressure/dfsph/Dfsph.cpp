@@ -17,8 +17,9 @@
 //   3. density solve (Alg. 3): ρ*_i = ρ_i + Δt Dρ_i/Dt(v*), κ_i = max(ρ*_i − ρ0, 0) α_i / Δt²
 //      until the density error (norm and η of sphSolution, as pcisph) is met.
 // Positions do not change within the solves, so ∇W of every pair is computed once, with the
-// density, and the solver passes only stream it. Both warm-start from half of the last step's κ (fields dfsphKappa, dfsphKappaV: restarts
-// continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
+// density (computeDensity, after the neighbour search), and the solver passes only stream it.
+// Both solves warm-start from half of the last step's κ (fields dfsphKappa, dfsphKappaV:
+// restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
 // Euler gives v_{n+1} = v*, x_{n+1} = x_n + Δt v*. Wall particles b have mass M_b = ρ0 V_b
 // (WallVolumes.hpp: uniform m/ρ0 by default, or the boundary model's adaptive volume).
 //
@@ -30,6 +31,8 @@
 #include "PressureModel.hpp"
 #include "SphOperators.hpp"
 #include "WallVolumes.hpp"
+
+#include <stdexcept>
 
 namespace {
 using namespace spindrift;
@@ -116,6 +119,9 @@ public:
         const auto& rho = s.fluid.density();
         auto& a = s.fluid.acceleration();
         auto& p = s.fluid.pressure();
+        if (gradFluid_.size() != s.search.fluidNeighbours().totalPairs() ||
+            gradWall_.size() != s.search.boundaryNeighbours().totalPairs())
+            throw std::logic_error("dfsph: computeDensity must run after each neighbour search (it caches the gradients)");
         velocity_.assign(v.begin(), v.end());
         rate_.resize(n);
         kappaOverRho_.resize(n);
@@ -123,8 +129,8 @@ public:
         const Scalar* alpha = alpha_.data();
 
         // 1. divergence solve: remove the compressing part of the velocity field
-        divergenceIterations_ = 0;
         if (divergenceSolve_) {
+            int divergenceIterations = 0;
             auto& kv = *kappaV_;
             warmStartVelocities(s, kv, dt);
             for (;;) {
@@ -135,8 +141,8 @@ public:
                 for (std::size_t i = 0; i < n; ++i)
                     rate_[i] = ff.count(i) + fb.count(i) >= minNeighbours_ ? std::max(rate_[i], Scalar(0)) : Scalar(0);
                 const double error = dt * deterministicSum(n, [&](std::size_t i) { return rate_[i]; }) / (double(n) * rho0_);
-                if (divergenceIterations_ >= maxDivergenceIterations_ ||
-                    (divergenceIterations_ >= 1 && error <= maxDivergenceError_))
+                if (divergenceIterations >= maxDivergenceIterations_ ||
+                    (divergenceIterations >= 1 && error <= maxDivergenceError_))
                     break;
 #pragma omp parallel for schedule(static)
                 for (std::size_t i = 0; i < n; ++i) {
@@ -145,7 +151,7 @@ public:
                     kappaOverRho_[i] = k / rho[i];
                 }
                 applyStiffness(s, dt);
-                ++divergenceIterations_;
+                ++divergenceIterations;
             }
         }
 
@@ -245,7 +251,7 @@ private:
     Scalar rho0_, warmStart_;
     bool divergenceSolve_, adaptiveWalls_;
     Scalar maxDivergenceError_ = Scalar(0.001);
-    int maxDivergenceIterations_ = 100, divergenceIterations_ = 0;
+    int maxDivergenceIterations_ = 100;
     std::size_t minNeighbours_ = 20;
     IterativeSolverControls controls_;
     std::vector<Scalar> wallVolume_, alpha_, rate_, kappaOverRho_;
