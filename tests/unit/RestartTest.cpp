@@ -34,13 +34,14 @@ void editDictionary(const fs::path& file, const std::vector<std::pair<std::strin
 }
 
 // A small dam break (about 450 particles) with the given integrator and pressure model.
-fs::path makeCase(const fs::path& dir, const std::string& integrator, const std::string& pressure, double endTime) {
+fs::path makeCase(const fs::path& dir, const std::string& integrator, const std::string& pressure, double endTime,
+                  const std::string& pressureOptions = "") {
     fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/damBreak2D", dir, fs::copy_options::recursive);
     editDictionary(dir / "constant/fluidProperties", {{"particleSpacing", "0.0047625"}}); // a/12
     editDictionary(dir / "system/controlDict", {{"endTime", std::to_string(endTime)}, {"writeInterval", "0.005"},
                                                  {"maxCo", "0.1"}});
     editDictionary(dir / "system/sphSchemes",
-                   {{"integrator", "{ type " + integrator + "; }"}, {"pressure", "{ type " + pressure + "; }"},
+                   {{"integrator", "{ type " + integrator + "; }"}, {"pressure", "{ type " + pressure + "; " + pressureOptions + " }"},
                     {"viscosity", "{ type laminar; }"}}); // needs no sound speed: works with every solver
     return dir;
 }
@@ -52,15 +53,26 @@ ParticleSet finalState(const fs::path& caseDir) {
 }
 
 struct Combination {
-    std::string integrator, pressure;
+    std::string integrator, pressure, options; // options: more entries of the pressure dictionary
+    std::string name() const {
+        std::string n = integrator;
+        n += '_';
+        n += pressure;
+        if (!options.empty()) {
+            n += '_';
+            n.append(options, 0, options.find(' '));
+        }
+        return n;
+    }
 };
-void PrintTo(const Combination& c, std::ostream* os) { *os << c.integrator << " + " << c.pressure; }
+void PrintTo(const Combination& c, std::ostream* os) { *os << c.integrator << " + " << c.pressure << " " << c.options; }
 
 std::vector<Combination> combinations() {
     std::vector<Combination> out;
     auto& registry = ModelRegistry::instance();
     for (const auto& i : registry.available("integrator"))
-        for (const auto& p : registry.available("pressure")) out.push_back({i, p});
+        for (const auto& p : registry.available("pressure")) out.push_back({i, p, ""});
+    out.push_back({"symplecticEuler", "dfsph", "checkPositions yes;"}); // its extra restart field
     return out;
 }
 
@@ -68,18 +80,18 @@ class RestartTest : public testing::TestWithParam<Combination> {};
 
 TEST_P(RestartTest, ContinuesBitForBitWithAnyThreadCount) {
     log::setQuiet(true);
-    const auto& [integrator, pressure] = GetParam();
+    const auto& [integrator, pressure, options] = GetParam();
     test::TempDir tmp;
     const double T = 0.01;
     // uninterrupted, one thread
-    const fs::path whole = makeCase(tmp.path() / "whole", integrator, pressure, T);
+    const fs::path whole = makeCase(tmp.path() / "whole", integrator, pressure, T, options);
     setThreads(1);
     {
         Simulation sim(whole);
         sim.run();
     }
     // first half, then a restart, with two threads
-    const fs::path split = makeCase(tmp.path() / "split", integrator, pressure, T / 2);
+    const fs::path split = makeCase(tmp.path() / "split", integrator, pressure, T / 2, options);
     setThreads(2);
     long firstSteps = 0;
     {
@@ -109,7 +121,7 @@ TEST_P(RestartTest, ContinuesBitForBitWithAnyThreadCount) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegratorAndPressureModel, RestartTest, testing::ValuesIn(combinations()),
-                         [](const auto& info) { return info.param.integrator + "_" + info.param.pressure; });
+                         [](const auto& info) { return info.param.name(); });
 
 fs::path tooLargeTimeStep(const fs::path& dir, const std::string& onBlowUp) {
     fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir, fs::copy_options::recursive);
