@@ -182,27 +182,31 @@ void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
 }
 
 void NeighbourSearch::balanceWork(int threads) {
-    // work before particle i: its fluid and wall pairs plus a per-particle cost of about
-    // 'perParticle' pairs; thread t starts where that reaches t/T of the total
+    // work before particle i: its pairs (fluid and wall, or fluid only) plus a per-particle cost
+    // of about 'perParticle' pairs; thread t starts where that reaches t/T of the total
     constexpr std::size_t perParticle = 8;
     const std::size_t n = fluidFluid_.size();
-    auto work = [&](std::size_t i) {
-        return std::size_t(fluidFluid_.offsets[i]) + fluidBoundary_.offsets[i] + perParticle * i;
-    };
-    workRanges_.assign(threads + 1, n);
-    workRanges_[0] = 0;
-    const double total = double(work(n));
-    std::size_t lo = 0;
-    for (int t = 1; t < threads; ++t) {
-        const double target = total * t / threads;
-        std::size_t a = lo, b = n; // first i with work(i) >= target
-        while (a < b) {
-            const std::size_t mid = (a + b) / 2;
-            if (double(work(mid)) < target) a = mid + 1;
-            else b = mid;
+    const auto balance = [&](std::vector<std::size_t>& ranges, bool walls) {
+        auto work = [&](std::size_t i) {
+            return std::size_t(fluidFluid_.offsets[i]) + (walls ? fluidBoundary_.offsets[i] : 0) + perParticle * i;
+        };
+        ranges.assign(threads + 1, n);
+        ranges[0] = 0;
+        const double total = double(work(n));
+        std::size_t lo = 0;
+        for (int t = 1; t < threads; ++t) {
+            const double target = total * t / threads;
+            std::size_t a = lo, b = n; // first i with work(i) >= target
+            while (a < b) {
+                const std::size_t mid = (a + b) / 2;
+                if (double(work(mid)) < target) a = mid + 1;
+                else b = mid;
+            }
+            ranges[t] = lo = a;
         }
-        workRanges_[t] = lo = a;
-    }
+    };
+    balance(workRanges_, true);
+    balance(fluidWorkRanges_, false);
 }
 
 std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) const {

@@ -257,10 +257,12 @@ public:
     // takes [first, last) = workRange(t, T), with about the same number of fluid and wall
     // neighbours as every other thread (the fluid near walls has more). From the lists of the
     // last build; an even split when T differs from the thread count they were made for.
-    std::pair<std::size_t, std::size_t> workRange(int t, int threads) const {
+    // PairWork::Fluid balances the fluid pairs alone, for passes that visit no wall pair.
+    enum class PairWork { FluidAndWall, Fluid };
+    std::pair<std::size_t, std::size_t> workRange(int t, int threads, PairWork work = PairWork::FluidAndWall) const {
         const std::size_t n = fluidFluid_.size();
-        if (threads == int(workRanges_.size()) - 1 && workRanges_.back() == n)
-            return {workRanges_[t], workRanges_[t + 1]};
+        const auto& ranges = work == PairWork::Fluid ? fluidWorkRanges_ : workRanges_;
+        if (threads == int(ranges.size()) - 1 && ranges.back() == n) return {ranges[t], ranges[t + 1]};
         return {n * t / threads, n * (t + 1) / threads};
     }
 
@@ -282,13 +284,15 @@ private:
     std::vector<Vec3> boundaryPoints_;
     NeighbourList fluidFluid_, fluidBoundary_;
     std::vector<std::vector<Index>> threadBuffers_; // kept between steps: no allocation per step
-    std::vector<std::size_t> workRanges_;           // threads + 1 bounds (workRange)
+    std::vector<std::size_t> workRanges_, fluidWorkRanges_; // threads + 1 bounds (workRange)
     void balanceWork(int threads);
 };
 
 // Calls f(i) for every fluid particle i in parallel, each thread over its workRange: for pair
 // loops over the step's lists (deterministic: every i is computed by one thread alone).
-template <class F> void forEachParticleBalanced(const NeighbourSearch& search, F&& f) {
+template <class F>
+void forEachParticleBalanced(const NeighbourSearch& search, F&& f,
+                             NeighbourSearch::PairWork work = NeighbourSearch::PairWork::FluidAndWall) {
 #pragma omp parallel
     {
         int t = 0, threads = 1;
@@ -296,7 +300,7 @@ template <class F> void forEachParticleBalanced(const NeighbourSearch& search, F
         t = omp_get_thread_num();
         threads = omp_get_num_threads();
 #endif
-        const auto [first, last] = search.workRange(t, threads);
+        const auto [first, last] = search.workRange(t, threads, work);
         for (std::size_t i = first; i < last; ++i) f(i);
     }
 }

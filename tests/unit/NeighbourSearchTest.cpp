@@ -101,7 +101,8 @@ TEST_P(NeighbourSearchTest, SortOrderIsAPermutationAlongTheCurve) {
 }
 
 // The threads' particle ranges tile [0, n) in order and carry about equal pair work, although
-// the points near the wall (here: the first ones) have many more neighbours.
+// the points near the wall (here: the first ones) have many more neighbours; the fluid-only
+// ranges carry equal fluid pair work.
 TEST(NeighbourSearch, WorkRangesTileTheParticlesWithEqualWork) {
     std::mt19937 rng(6);
     std::uniform_real_distribution<Scalar> u(0, 1);
@@ -148,6 +149,15 @@ TEST(NeighbourSearch, WorkRangesTileTheParticlesWithEqualWork) {
     for (std::size_t i = a1; i < fluid.size(); ++i) w1 += ff.count(i) + fb.count(i);
     EXPECT_LT(std::abs(w0 - w1), 0.05 * std::max(w0, w1));
     EXPECT_LT(a1, fluid.size() / 2); // the wall's side is the heavier one
+    // PairWork::Fluid balances the fluid pairs alone (passes that visit no wall pair)
+    const auto [f0, f1] = search.workRange(0, 2, NeighbourSearch::PairWork::Fluid);
+    EXPECT_EQ(f0, 0u);
+    EXPECT_EQ(search.workRange(1, 2, NeighbourSearch::PairWork::Fluid).second, fluid.size());
+    double v0 = 0, v1 = 0;
+    for (std::size_t i = 0; i < f1; ++i) v0 += ff.count(i);
+    for (std::size_t i = f1; i < fluid.size(); ++i) v1 += ff.count(i);
+    EXPECT_LT(std::abs(v0 - v1), 0.05 * std::max(v0, v1));
+    EXPECT_GT(f1, a1); // the wall pairs no longer weigh on the first range
 #endif
 }
 

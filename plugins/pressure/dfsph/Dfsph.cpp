@@ -217,7 +217,7 @@ private:
             for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k)
                 fluid += (ui - u[ff.indices[k]]).dot(gradFluid_[k]);
             then(i, m * fluid + ui.dot(wallGradient_[i]));
-        });
+        }, NeighbourSearch::PairWork::Fluid);
     }
 
     // then(i, ρ_i at x + Δt velocity_): the density summed on the step's lists at the positions
@@ -261,7 +261,7 @@ private:
                 dv += (ki + kr[ff.indices[k]]) * gradFluid_[k];
             velocity_[i] -= dt * (m * dv + ki * wallGradient_[i]);
             if (total) total[i] += ki * rho[i];
-        });
+        }, NeighbourSearch::PairWork::Fluid);
     }
 
     // Applies warmStart × the last step's κ to velocity_ and keeps it as this step's start.
