@@ -74,6 +74,23 @@ TEST(Wcsph, TaitPressureAndSymmetricForceConserveMomentum) {
     EXPECT_LT(sc.totalForce().norm(), 1e-12 * sc.forceScale());
 }
 
+// (ρ/ρ0)^γ by multiplication for a whole γ, by pow otherwise: the same Tait pressure
+TEST(Wcsph, TaitPressureForWholeAndFractionalGamma) {
+    for (double gamma : {7.0, 1.0, 2.0, 7.5, 1.4}) {
+        Scene sc(2);
+        sc.block(16, 0.2, 0);
+        auto p = test::createModel<PressureModel>(
+            "type wcsph; soundSpeed 20; clampNegativePressure no; gamma " + std::to_string(gamma) + ";", sc.s.physics);
+        p->initialise(sc.s);
+        p->computeDensity(sc.s);
+        const double B = 20.0 * 20.0 * 1000 / gamma;
+        for (std::size_t i : {std::size_t(0), std::size_t(5), sc.s.fluid.size() / 2}) {
+            const double rho = sc.s.fluid.density()[i];
+            EXPECT_NEAR(sc.s.fluid.pressure()[i], B * (std::pow(rho / 1000, gamma) - 1), 1e-9 * B) << "gamma " << gamma;
+        }
+    }
+}
+
 TEST(Wcsph, ClampNegativePressure) {
     Scene sc(2);
     sc.block(6, 0, 0); // small block: every particle is near the free surface, ρ < ρ0
