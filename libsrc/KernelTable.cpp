@@ -7,13 +7,17 @@ namespace spindrift {
 
 template <class F> std::vector<KernelTable::Block> KernelTable::tabulate(F&& f, double end) const {
     // Cubic Hermite on each interval [r0, r1] from values and one-sided slopes, computed in
-    // double precision whatever Scalar is.
+    // double precision whatever Scalar is. The kernel takes its argument as Scalar: in single
+    // precision the difference step must be far above float's resolution (1e-4 dr would be one
+    // ulp of r near h), and the left limit at h is taken just below h as float resolves it.
+    constexpr bool single = sizeof(Scalar) < sizeof(double);
     const double dr = end / intervals_;
-    const double e = dr * 1e-4;
+    const double e = dr * (single ? 0.1 : 1e-4);
     std::vector<Block> table(intervals_);
     for (int k = 0; k < intervals_; ++k) {
         const double r0 = k * dr, r1 = (k + 1) * dr;
-        const double f0 = f(r0), f1 = (k + 1 == intervals_) ? f(r1 - 1e-12 * dr) : f(r1);
+        const double below = single ? double(std::nextafter(Scalar(r1), Scalar(0))) : r1 - 1e-12 * dr;
+        const double f0 = f(r0), f1 = f(k + 1 == intervals_ ? below : r1);
         // one-sided second-order differences, staying inside the interval
         const double s0 = (-3.0 * f0 + 4.0 * f(r0 + e) - f(r0 + 2 * e)) / (2 * e) * dr;
         const double s1 = (3.0 * f1 - 4.0 * f(r1 - e) + f(r1 - 2 * e)) / (2 * e) * dr;
