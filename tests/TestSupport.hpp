@@ -28,7 +28,22 @@ std::string readFile(const std::filesystem::path& file);
 
 #include "ModelRegistry.hpp"
 
+#include <limits>
+#include <type_traits>
+
 namespace spindrift::test {
+
+// Precision of the build (Scalar = float with -DSPINDRIFT_PRECISION=float). Tolerances written
+// for double keep their value in the double build; tol(d, f) gives f in the float build.
+inline constexpr bool singlePrecision = std::is_same_v<Scalar, float>;
+inline constexpr double eps = std::numeric_limits<Scalar>::epsilon();
+constexpr double tol(double doubleTol, double floatTol) { return singlePrecision ? floatTol : doubleTol; }
+// EXPECT_DOUBLE_EQ in the double build, EXPECT_FLOAT_EQ (4 ulps of float) in the float build.
+#ifdef SPINDRIFT_SINGLE_PRECISION
+#define EXPECT_SCALAR_EQ(a, b) EXPECT_FLOAT_EQ(a, b)
+#else
+#define EXPECT_SCALAR_EQ(a, b) EXPECT_DOUBLE_EQ(a, b)
+#endif
 
 // Physical parameters for model unit tests: spacing dx, support factor·dx, dimension dim.
 PhysicalParameters physicsFor(int dim, Scalar dx = 0.01, Scalar supportFactor = 2.6, Scalar rho0 = 1000);

@@ -83,10 +83,12 @@ TEST(VelocityVerlet, SecondOrderAlsoForVelocityDependentForces) {
     std::cout << "velocityVerlet observed order: oscillator " << osc << ", damped oscillator " << damped
               << " (leapfrog, which evaluates with the half-step velocity: " << leapfrogDamped << ")\n";
     EXPECT_NEAR(osc, 2.0, 0.1);
-    EXPECT_NEAR(damped, 2.0, 0.1);
-    // exact (to round-off) for a constant acceleration
-    EXPECT_LT(positionError(vv, freeFall, 0.01), 1e-12);
-    EXPECT_LT((integrate(vv, freeFall, 0.01).v - freeFall.exactVelocity(1.0)).norm(), 1e-12);
+    // float: round-off (~3e-7 of the 1.5e-6 m error at dt = 0.0025) flattens the fit: measured 1.882
+    EXPECT_NEAR(damped, 2.0, test::tol(0.1, 0.15));
+    // exact (to round-off) for a constant acceleration (float: 100 steps of values up to ~10)
+    const double roundOff = test::tol(1e-12, 100 * 10 * test::eps);
+    EXPECT_LT(positionError(vv, freeFall, 0.01), roundOff);
+    EXPECT_LT((integrate(vv, freeFall, 0.01).v - freeFall.exactVelocity(1.0)).norm(), roundOff);
     // identical to leapfrog when the force depends on position only
     const Result a = integrate(vv, oscillator, 0.01), b = integrate("type leapfrog;", oscillator, 0.01);
     EXPECT_LT((a.x - b.x).norm(), 1e-12);
@@ -97,8 +99,10 @@ TEST(PereaCorderoIntegrator, DefaultHistoryIsConsistentAndItsOrderFollowsBeta) {
     const std::string paperBetas = "type pereaCordero;"; // β1 = 0.7586, β2 = 1.101, history (1.5 -2 0.5)
     const std::string taylor = "type pereaCordero; beta1 1; beta2 1;";
     // free fall: D_n = 0 for a constant acceleration, so the step is the exact Taylor step
-    EXPECT_LT(positionError(paperBetas, freeFall, 0.01), 1e-12);
-    EXPECT_LT((integrate(paperBetas, freeFall, 0.01).v - freeFall.exactVelocity(1.0)).norm(), 1e-12);
+    // (float: to the round-off of 100 steps of values up to ~10)
+    const double roundOff = test::tol(1e-12, 100 * 10 * test::eps);
+    EXPECT_LT(positionError(paperBetas, freeFall, 0.01), roundOff);
+    EXPECT_LT((integrate(paperBetas, freeFall, 0.01).v - freeFall.exactVelocity(1.0)).norm(), roundOff);
     const double oscPaper = observedOrder(paperBetas, oscillator), dampedPaper = observedOrder(paperBetas, dampedOscillator);
     const double oscTaylor = observedOrder(taylor, oscillator), dampedTaylor = observedOrder(taylor, dampedOscillator);
     std::cout << "pereaCordero observed order, paper beta1 = 0.7586, beta2 = 1.101: oscillator " << oscPaper
@@ -120,7 +124,8 @@ TEST(PereaCorderoIntegrator, PaperHistoryIsInconsistentOnFreeFall) {
     for (double dt : {0.02, 0.01, 0.005, 0.0025}) {
         const Result r = integrate(paper, freeFall, dt);
         const double gained = (r.v.y() - freeFall.v0.y()) / (-g * 1.0);
-        EXPECT_NEAR(gained, 1 + beta1 / 2, 1e-9) << "dt = " << dt;
+        // float: the round-off of 1/dt velocity updates of |v| <~ 1.2 g
+        EXPECT_NEAR(gained, 1 + beta1 / 2, test::tol(1e-9, 2 * test::eps / dt)) << "dt = " << dt;
     }
     const double order = observedOrder(paper, freeFall);
     const double fine = positionError(paper, freeFall, 0.0025);

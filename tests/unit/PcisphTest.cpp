@@ -83,7 +83,8 @@ TEST(Pcisph, DeltaMatchesHandComputationOn2DAnd3DLattices) {
             for (std::size_t i : ids) {
                 const double rhoErr = sc.s.fluid.density()[i] - rho0;
                 ASSERT_GT(rhoErr, 0) << dim << "D: the interior must be compressed";
-                EXPECT_NEAR(sc.s.fluid.pressure()[i] / (deltaHand * rhoErr), 1.0, 1e-6)
+                // float: δ and ρ − ρ0 (≈ 7 out of 1000) carry the rounding of ρ
+                EXPECT_NEAR(sc.s.fluid.pressure()[i] / (deltaHand * rhoErr), 1.0, test::tol(1e-6, 1e-5))
                     << dim << "D, dt " << dt << ": pressure " << sc.s.fluid.pressure()[i] << " vs delta "
                     << deltaHand << " x " << rhoErr;
             }
@@ -117,7 +118,7 @@ TEST(Pcisph, ConvergesToMaximumDensityErrorAndTheStepRealisesThePrediction) {
             total += a;
             scale += a.norm();
         }
-        EXPECT_LT(total.norm(), 1e-10 * scale);
+        EXPECT_LT(total.norm(), test::tol(1e-10, 32 * test::eps) * scale); // float: ~30-term pair sums
         // the step taken with this acceleration lands on the verified prediction
         sc.advance(*p, dt);
         EXPECT_NEAR(sc.maxCompression(), st.maxDensityError, 1e-12) << dim << "D";
