@@ -8,6 +8,7 @@ set -euo pipefail
 export SPINDRIFT_BIN=$1
 here=$(cd "$(dirname "$0")" && pwd)
 fail() { echo "FAIL: $*"; exit 1; }
+[ -x "$SPINDRIFT_BIN/spindrift" ] || fail "no solver in $SPINDRIFT_BIN (the build's bin directory is expected)"
 out=$("$here/../../tutorials/benchmarks/Allrun" -methods "wcsph pcisph pbf relaxedPbf dfsph" -threads "1 2" -endTime 0.006)
 echo "$out"
 ! grep -q failed <<< "$out" || fail "a run failed"
