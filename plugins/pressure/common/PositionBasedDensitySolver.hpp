@@ -134,6 +134,7 @@ public:
         step_.resize(n);
         lambdaTotal_.assign(n, Scalar(0));
         dLambda_.resize(n);
+        rhoPredicted_.resize(n);
 
         // The warm start comes from the previous step, also when the state is evaluated again
         // at the same time (the solver's initial evaluation, a restart).
@@ -156,7 +157,8 @@ public:
         int iterations = 0;
         CompressionError err;
         for (;;) {
-            err = constraintStep(s);
+            constraintStep(s);
+            err = compressionError(rhoPredicted_, rho0_);
             if (controls_.done(iterations, err.max, err.avg)) break;
             positionCorrection(s, dLambda_, options_.sCorrK > 0 && iterations == 0);
             applyCorrection(relax, true);
@@ -190,12 +192,14 @@ private:
         correction_.assign(n, Vec3::Zero());
         step_.resize(n);
         dLambda_.resize(n);
+        rhoPredicted_.resize(n);
         constexpr int maxRelaxation = 2000, rebuildEvery = 20;
         CompressionError start, err;
         int k = 0;
         for (;; ++k) {
             if (k > 0 && k % rebuildEvery == 0) s.search.build(predicted_);
-            err = constraintStep(s);
+            constraintStep(s);
+            err = compressionError(rhoPredicted_, rho0_);
             if (k == 0) start = err;
             if (controls_.converged(err.max, err.avg) || k == maxRelaxation) break;
             positionCorrection(s, dLambda_, false);
@@ -214,9 +218,8 @@ private:
         else log::info(msg.str());
     }
 
-    // ρ*, C and Δλ at the predicted positions; returns the compression error of ρ* (in the
-    // same pass).
-    CompressionError constraintStep(const SphSystem& s) {
+    // ρ*, C and Δλ at the predicted positions.
+    void constraintStep(const SphSystem& s) {
         const auto& kt = s.kernel;
         const Scalar m = s.fluid.particleMass(), rho0 = rho0_, V = volume_, eps = epsilon_;
         const auto& ff = s.search.fluidNeighbours();
@@ -225,7 +228,7 @@ private:
         const auto& xs = predicted_;
         const Scalar* vb = wallVolume_.data();
         const bool walls = s.hasBoundary(), clamp = options_.clampDensity;
-        return forEachParticleBalancedWithError(s.search, [&](std::size_t i) {
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
             Scalar sum = kt.W0(), sq = 0;
             Vec3 grad = Vec3::Zero();
             forEachNeighbour(ff, xs, xs, i, [&](Index, const Vec3& rij, Scalar r2) {
@@ -241,10 +244,10 @@ private:
                     rho += rho0 * vb[b] * kt.WSq(r2);
                     grad += vb[b] * kt.gradWSq(rib, r2);
                 });
-            const Scalar compression = rho / rho0 - 1;
-            const Scalar C = clamp ? std::max(compression, Scalar(0)) : compression;
+            rhoPredicted_[i] = rho;
+            Scalar C = rho / rho0 - 1;
+            if (clamp) C = std::max(C, Scalar(0));
             dLambda_[i] = -C / (grad.squaredNorm() + V * V * sq + eps);
-            return std::max(0.0, double(compression));
         });
     }
 
@@ -304,7 +307,7 @@ private:
     std::vector<Scalar> wallVolume_;
     double lastSolveTime_ = std::numeric_limits<double>::quiet_NaN();
     std::vector<Vec3> predicted_, correction_, step_;
-    std::vector<Scalar> lambdaTotal_, dLambda_; // λ of this solve, its increment
+    std::vector<Scalar> lambdaTotal_, dLambda_, rhoPredicted_; // λ of this solve, its increment, ρ*
     SolverStats stats_;
 };
 
