@@ -42,22 +42,22 @@ struct WallMasses {
 };
 
 // ρ_i = m (W(0) + Σ_j W_ij) + Σ_b M_b W_ib at positions x (the current or predicted ones), on
-// the step's neighbour lists: of one particle (for solvers that fuse it into their own pass)
-// and of all.
-inline Scalar summationDensityOf(const SphSystem& s, const std::vector<Vec3>& x, WallMasses walls, std::size_t i) {
-    const auto& kt = s.kernel;
-    const Scalar* wb = walls.weight;
-    Scalar sum = kt.W0();
-    forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index, const Vec3&, Scalar r2) { sum += kt.WSq(r2); });
-    Scalar wall = 0;
-    if (wb)
-        forEachNeighbour(s.search.boundaryNeighbours(), x, s.boundary.position(), i,
-                         [&](Index b, const Vec3&, Scalar r2) { wall += wb[b] * kt.WSq(r2); });
-    return s.fluid.particleMass() * sum + walls.scale * wall;
-}
+// the step's neighbour lists.
 inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho,
                              WallMasses walls) {
-    forEachParticleBalanced(s.search, [&](std::size_t i) { rho[i] = summationDensityOf(s, x, walls, i); });
+    const auto& kt = s.kernel;
+    const Scalar m = s.fluid.particleMass();
+    const auto& ff = s.search.fluidNeighbours();
+    const auto& fb = s.search.boundaryNeighbours();
+    const auto& xb = s.boundary.position();
+    const Scalar* wb = walls.weight;
+    forEachParticleBalanced(s.search, [&](std::size_t i) {
+        Scalar sum = kt.W0();
+        forEachNeighbour(ff, x, x, i, [&](Index, const Vec3&, Scalar r2) { sum += kt.WSq(r2); });
+        Scalar wall = 0;
+        if (wb) forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3&, Scalar r2) { wall += wb[b] * kt.WSq(r2); });
+        rho[i] = m * sum + walls.scale * wall;
+    });
 }
 inline void summationDensity(const SphSystem& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
     summationDensity(s, x, rho, WallMasses::ofBoundaryModel(s));

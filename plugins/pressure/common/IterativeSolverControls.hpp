@@ -18,9 +18,6 @@
 #include "Dictionary.hpp"
 #include "SphSystem.hpp"
 
-#include <algorithm>
-#include <cstdint>
-
 #include <sstream>
 #include <string>
 
@@ -107,36 +104,6 @@ inline CompressionError compressionError(const std::vector<Scalar>& rho, Scalar 
         max = std::max(max, maxima[b]);
     }
     return {Scalar(max), Scalar(sum / double(n))};
-}
-
-// Calls e = f(i) for every fluid particle over the balanced thread ranges (as
-// forEachParticleBalanced), e being particle i's error (≥ 0), and returns their maximum and
-// average: a solver's pass and its convergence test in one parallel region. The sum is taken
-// in fixed point (2⁻³⁶ per particle, each e clamped to 1 for the sum only), so it is the same
-// for any thread count and order.
-template <class F>
-CompressionError forEachParticleBalancedWithError(const NeighbourSearch& search, F&& f,
-                                                  NeighbourSearch::PairWork work = NeighbourSearch::PairWork::FluidAndWall) {
-    constexpr double unit = 68719476736.0; // 2³⁶
-    const std::size_t n = search.fluidNeighbours().size();
-    double max = 0;
-    std::uint64_t ticks = 0;
-#pragma omp parallel reduction(max : max) reduction(+ : ticks)
-    {
-        int t = 0, threads = 1;
-#ifdef _OPENMP
-        t = omp_get_thread_num();
-        threads = omp_get_num_threads();
-#endif
-        const auto [first, last] = search.workRange(t, threads, work);
-        for (std::size_t i = first; i < last; ++i) {
-            const double e = f(i);
-            max = std::max(max, e);
-            ticks += std::uint64_t((e > 0 ? (e < 1 ? e : 1.0) : 0.0) * unit + 0.5);
-        }
-    }
-    if (n == 0) return {};
-    return {Scalar(max), Scalar(double(ticks) / unit / double(n))};
 }
 
 } // namespace spindrift

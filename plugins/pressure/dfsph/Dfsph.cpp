@@ -135,20 +135,19 @@ public:
         const auto& ff = s.search.fluidNeighbours();
         const auto& fb = s.search.boundaryNeighbours();
 
-        const auto compression = [&](Scalar density) { return std::max(0.0, double((density - rho0_) / rho0_)); };
-
         // 1. divergence solve: remove the compressing part of the velocity field. Per iteration
-        //    two parallel passes: Dρ/Dt with the next κ/ρ and the error, then the velocities.
+        //    one pass for Dρ/Dt and the next κ/ρ, the average error, one pass for the velocities.
         if (divergenceSolve_) {
             int divergenceIterations = 0;
             auto& kv = *kappaV_;
             warmStartVelocities(s, kv, dt);
             for (;;) {
-                const double error = densityRatePass(s, [&](std::size_t i, Scalar rate) {
+                densityRatePass(s, [&](std::size_t i, Scalar rate) {
                     rate = ff.count(i) + fb.count(i) >= minNeighbours_ ? std::max(rate, Scalar(0)) : Scalar(0);
+                    rate_[i] = rate;
                     kappaOverRho_[i] = rate * alpha[i] * invDt / rho[i];
-                    return double(dt * rate / rho0_);
-                }).avg;
+                });
+                const double error = dt * deterministicSum(n, [&](std::size_t i) { return rate_[i]; }) / (double(n) * rho0_);
                 if (divergenceIterations >= maxDivergenceIterations_ ||
                     (divergenceIterations >= 1 && error <= maxDivergenceError_))
                     break;
@@ -175,19 +174,18 @@ public:
         int iterations = 0, checks = 0;
         CompressionError err;
         for (;;) {
-            err = densityRatePass(s, [&](std::size_t i, Scalar rate) {
-                const Scalar predicted = rho[i] + (offset ? offset[i] : Scalar(0)) + dt * rate;
-                stiffness(i, predicted);
-                return compression(predicted);
+            densityRatePass(s, [&](std::size_t i, Scalar rate) {
+                stiffness(i, rho[i] + (offset ? offset[i] : Scalar(0)) + dt * rate);
             });
+            err = compressionError(rate_, rho0_);
             if (controls_.done(iterations, err.max, err.avg)) {
                 if (!checkPositions_ || iterations >= controls_.maxIterations || checks == maxPositionChecks) break;
-                err = densityAtPredictedPositions(s, dt, [&](std::size_t i, Scalar real) {
+                densityAtPredictedPositions(s, dt, [&](std::size_t i, Scalar real) {
                     offset[i] += real - rate_[i];
                     stiffness(i, real);
-                    return compression(real);
                 });
                 ++checks;
+                err = compressionError(rate_, rho0_);
                 if (controls_.converged(err.max, err.avg)) break;
             }
             applyStiffness(s, dt, &k);
@@ -207,25 +205,24 @@ public:
     SolverStats lastSolve() const override { return stats_; }
 
 private:
-    // e_i = then(i, Dρ_i/Dt) with Dρ_i/Dt of velocity_ (the cached gradients; the walls at rest
-    // give Σ_b M_b v_i·∇W_ib = v_i·Σ_b M_b ∇W_ib, so no wall pair is visited in the solves);
-    // returns the maximum and average of e.
-    template <class Then> CompressionError densityRatePass(const SphSystem& s, Then&& then) {
+    // then(i, Dρ_i/Dt) with Dρ_i/Dt of velocity_ (the cached gradients; the walls at rest give
+    // Σ_b M_b v_i·∇W_ib = v_i·Σ_b M_b ∇W_ib, so no wall pair is visited in the solves).
+    template <class Then> void densityRatePass(const SphSystem& s, Then&& then) {
         const Scalar m = s.fluid.particleMass();
         const auto& ff = s.search.fluidNeighbours();
         const Vec3* u = velocity_.data();
-        return forEachParticleBalancedWithError(s.search, [&](std::size_t i) {
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
             const Vec3 ui = u[i];
             Scalar fluid = 0;
             for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k)
                 fluid += (ui - u[ff.indices[k]]).dot(gradFluid_[k]);
-            return then(i, m * fluid + ui.dot(wallGradient_[i]));
+            then(i, m * fluid + ui.dot(wallGradient_[i]));
         }, NeighbourSearch::PairWork::Fluid);
     }
 
-    // e_i = then(i, ρ_i at x + Δt velocity_): the density summed on the step's lists at the
-    // positions the velocities lead to (walls at rest); returns the maximum and average of e.
-    template <class Then> CompressionError densityAtPredictedPositions(const SphSystem& s, Scalar dt, Then&& then) {
+    // then(i, ρ_i at x + Δt velocity_): the density summed on the step's lists at the positions
+    // the velocities lead to (walls at rest).
+    template <class Then> void densityAtPredictedPositions(const SphSystem& s, Scalar dt, Then&& then) {
         const auto& kt = s.kernel;
         const auto& x = s.fluid.position();
         const auto& xb = s.boundary.position();
@@ -234,7 +231,7 @@ private:
         const auto& ff = s.search.fluidNeighbours();
         const auto& fb = s.search.boundaryNeighbours();
         const Vec3* u = velocity_.data();
-        return forEachParticleBalancedWithError(s.search, [&](std::size_t i) {
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
             const Vec3 ui = dt * u[i];
             Scalar sum = kt.W0();
             forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar) {
@@ -245,7 +242,7 @@ private:
                 forEachNeighbour(fb, x, xb, i, [&](Index b, const Vec3& rib, Scalar) {
                     wall += walls.weight[b] * kt.WSq((rib + ui).squaredNorm());
                 });
-            return then(i, m * sum + walls.scale * wall);
+            then(i, m * sum + walls.scale * wall);
         });
     }
 

@@ -78,10 +78,9 @@ public:
         nonPressure_.resize(n);
         pressureAcc_.resize(n);
         predicted_.resize(n);
-        pNext_.resize(n);
+        rhoPredicted_.resize(n);
         pOverRho2_.resize(n);
-        // two parallel passes an iteration: density with its error and the next pressure, then
-        // the pressure acceleration with the next prediction
+        // four parallel passes an iteration: density, error, pressure, acceleration + prediction
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
             nonPressure_[i] = a[i];
@@ -97,16 +96,16 @@ public:
         int iterations = 0;
         CompressionError err;
         for (;;) {
-            err = forEachParticleBalancedWithError(s.search, [&](std::size_t i) {
-                const Scalar predicted = summationDensityOf(s, predicted_, walls, i);
-                const Scalar pi = p[i] + delta * (predicted - rho0);
-                pNext_[i] = clamp ? std::max(pi, Scalar(0)) : pi; // p and p/ρ² if not converged
-                q[i] = pNext_[i] / (rho[i] * rho[i]);
-                return std::max(0.0, double((predicted - rho0) / rho0));
-            });
+            densityWithWalls(s, predicted_, wallVolume_, rhoPredicted_);
+            err = compressionError(rhoPredicted_, rho0);
             if (controls_.done(iterations, err.max, err.avg)) break;
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = 0; i < n; ++i) {
+                const Scalar pi = p[i] + delta * (rhoPredicted_[i] - rho0);
+                p[i] = clamp ? std::max(pi, Scalar(0)) : pi;
+                q[i] = p[i] / (rho[i] * rho[i]);
+            }
             symmetricPressureAcceleration(s, x, q, walls, [&](std::size_t i, const Vec3& ap) {
-                p[i] = pNext_[i];
                 pressureAcc_[i] = ap;
                 predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + ap));
             });
@@ -129,7 +128,7 @@ private:
     LatticeGradientSums prototype_;
     Scalar delta_ = 0, deltaDt_ = -1;
     std::vector<Vec3> nonPressure_, pressureAcc_, predicted_;
-    std::vector<Scalar> pNext_, pOverRho2_;
+    std::vector<Scalar> rhoPredicted_, pOverRho2_;
     SolverStats stats_;
 };
 } // namespace
