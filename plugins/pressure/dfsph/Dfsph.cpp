@@ -88,7 +88,7 @@ public:
         const auto& ff = s.search.fluidNeighbours();
         const auto& fb = s.search.boundaryNeighbours();
         const auto& xb = s.boundary.position();
-        alpha_.resize(x.size());
+        alphaOverRho_.resize(x.size());
         wallGradient_.resize(x.size());
         gradFluid_.resize(ff.totalPairs());
         forEachParticleBalanced(s.search, [&](std::size_t i) {
@@ -113,9 +113,9 @@ public:
             wallGradient_[i] = walls.scale * gradWall;
             const Vec3 g = m * grad + wallGradient_[i];
             const Scalar denominator = g.squaredNorm() + m * m * squares;
-            alpha_[i] = denominator > Scalar(1e-9) * rho0_ * rho0_ / (kt.supportRadius() * kt.supportRadius())
-                            ? rho[i] / denominator
-                            : Scalar(0);
+            alphaOverRho_[i] = denominator > Scalar(1e-9) * rho0_ * rho0_ / (kt.supportRadius() * kt.supportRadius())
+                                   ? 1 / denominator
+                                   : Scalar(0);
         });
     }
 
@@ -131,7 +131,7 @@ public:
         rate_.resize(n);
         kappaOverRho_.resize(n);
         const Scalar invDt = 1 / dt, invDt2 = invDt * invDt;
-        const Scalar* alpha = alpha_.data();
+        const Scalar* alphaOverRho = alphaOverRho_.data();
         const auto& ff = s.search.fluidNeighbours();
         const auto& fb = s.search.boundaryNeighbours();
 
@@ -145,7 +145,7 @@ public:
                 densityRatePass(s, [&](std::size_t i, Scalar rate) {
                     rate = ff.count(i) + fb.count(i) >= minNeighbours_ ? std::max(rate, Scalar(0)) : Scalar(0);
                     rate_[i] = rate;
-                    kappaOverRho_[i] = rate * alpha[i] * invDt / rho[i];
+                    kappaOverRho_[i] = rate * alphaOverRho[i] * invDt;
                 });
                 const double error = dt * deterministicSum(n, [&](std::size_t i) { return rate_[i]; }) / (double(n) * rho0_);
                 if (divergenceIterations >= maxDivergenceIterations_ ||
@@ -169,7 +169,7 @@ public:
         Scalar* offset = offset_ ? offset_->data() : nullptr; // δ of the last step to start with
         const auto stiffness = [&](std::size_t i, Scalar predicted) {
             rate_[i] = predicted;
-            kappaOverRho_[i] = std::max(predicted - rho0_, Scalar(0)) * alpha[i] * invDt2 / rho[i];
+            kappaOverRho_[i] = std::max(predicted - rho0_, Scalar(0)) * alphaOverRho[i] * invDt2;
         };
         int iterations = 0, checks = 0;
         CompressionError err;
@@ -284,7 +284,7 @@ private:
     int maxDivergenceIterations_ = 100;
     std::size_t minNeighbours_ = 20;
     IterativeSolverControls controls_;
-    std::vector<Scalar> wallVolume_, alpha_, rate_, kappaOverRho_;
+    std::vector<Scalar> wallVolume_, alphaOverRho_, rate_, kappaOverRho_; // α_i/ρ_i = 1/(eq. 8's denominator)
     std::vector<Scalar>* kappa_ = nullptr;  // field dfsphKappa: κ of the density solve
     std::vector<Scalar>* kappaV_ = nullptr; // field dfsphKappaV: κ of the divergence solve
     std::vector<Scalar>* offset_ = nullptr; // field dfsphDensityOffset (checkPositions): δ
