@@ -98,6 +98,17 @@ Vec3 BlockScene::block(int n, double scale) {
     return c;
 }
 
+void BlockScene::advance(PressureModel& p, double dt) {
+    auto& x = s.fluid.position();
+    auto& v = s.fluid.velocity();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        v[i] += dt * s.fluid.acceleration()[i];
+        x[i] += dt * v[i];
+    }
+    s.search.build(x);
+    p.computeDensity(s);
+}
+
 double BlockScene::maxCompression() const {
     double e = 0;
     for (auto rho : s.fluid.density()) e = std::max<double>(e, (rho - s.physics.rho0) / s.physics.rho0);

@@ -27,6 +27,7 @@ std::string readFile(const std::filesystem::path& file);
 } // namespace spindrift::test
 
 #include "ModelRegistry.hpp"
+#include "PressureModel.hpp"
 
 #include <limits>
 #include <type_traits>
@@ -80,6 +81,8 @@ struct BlockScene {
     }
     // max over the particles of (ρ − ρ0)/ρ0
     double maxCompression() const;
+    // symplectic Euler with the accelerations just computed, then p's density at the new state
+    void advance(PressureModel& p, double dt);
 };
 
 } // namespace spindrift::test

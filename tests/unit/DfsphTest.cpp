@@ -70,15 +70,8 @@ TEST(Dfsph, DensitySolveReachesEtaAndTheStepDecompresses) {
         }
         EXPECT_GT(scale, 0);
         EXPECT_LT(total.norm(), test::tol(1e-10, 32 * test::eps) * scale); // float: ~30-term pair sums
-        // the step (symplectic Euler) with this acceleration: the real density falls
-        auto& x = sc.s.fluid.position();
-        auto& v = sc.s.fluid.velocity();
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            v[i] += dt * sc.s.fluid.acceleration()[i];
-            x[i] += dt * v[i];
-        }
-        sc.s.search.build(x);
-        p->computeDensity(sc.s);
+        // the step with this acceleration: the real density falls
+        sc.advance(*p, dt);
         const double after = sc.maxCompression();
         std::cout << dim << "D block compressed " << 100 * before << " %: " << st.iterations
                   << " iterations; predicted " << 100 * st.maxDensityError << " %, after the step " << 100 * after << " %\n";
@@ -105,14 +98,7 @@ TEST(Dfsph, CheckPositionsHoldsTheRealDensityToEta) {
             const SolverStats st = p->lastSolve();
             EXPECT_TRUE(st.converged) << dim << "D";
             EXPECT_LE(st.maxDensityError, eta);
-            auto& x = sc.s.fluid.position();
-            auto& v = sc.s.fluid.velocity();
-            for (std::size_t i = 0; i < x.size(); ++i) {
-                v[i] += dt * sc.s.fluid.acceleration()[i];
-                x[i] += dt * v[i];
-            }
-            sc.s.search.build(x);
-            p->computeDensity(sc.s);
+            sc.advance(*p, dt);
             real[check] = sc.maxCompression();
             std::cout << dim << "D checkPositions " << check << ": " << st.iterations << " iterations, predicted "
                       << 100 * st.maxDensityError << " %, real after the step " << 100 * real[check] << " %\n";

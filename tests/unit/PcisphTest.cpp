@@ -45,17 +45,6 @@ struct Scene : test::BlockScene {
         }
         return ids;
     }
-    // symplectic Euler with the accelerations just computed, then the density at the new state
-    void advance(PressureModel& p, double dt) {
-        auto& x = s.fluid.position();
-        auto& v = s.fluid.velocity();
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            v[i] += dt * s.fluid.acceleration()[i];
-            x[i] += dt * v[i];
-        }
-        s.search.build(x);
-        p.computeDensity(s);
-    }
 };
 
 TEST(Pcisph, DeltaMatchesHandComputationOn2DAnd3DLattices) {
