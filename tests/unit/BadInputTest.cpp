@@ -20,9 +20,18 @@ struct BadInput {
 };
 void PrintTo(const BadInput& row, std::ostream* os) { *os << row.name; }
 
-std::string unescape(std::string s) {
-    for (std::size_t p; (p = s.find("\\n")) != std::string::npos;) s.replace(p, 2, "\n");
-    return s;
+std::string unescape(const std::string& s) {
+    std::string out;
+    out.reserve(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '\\' && i + 1 < s.size() && s[i + 1] == 'n') {
+            out += '\n';
+            ++i;
+        } else {
+            out += s[i];
+        }
+    }
+    return out;
 }
 
 std::vector<BadInput> readTable() {
