@@ -159,8 +159,16 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
             if (!inside) {
                 std::ostringstream s;
                 s << "fluid block '" << name << "' lies outside every wall: it must fit inside a container (";
-                for (const auto& [wallName, c] : containers)
-                    s << wallName << " spans (" << c.min.head(dim).transpose() << ") to (" << c.max.head(dim).transpose() << ") ";
+                const auto point = [&](const Vec3& p) {
+                    for (int k = 0; k < dim; ++k) s << (k ? " " : "") << p[k];
+                };
+                for (const auto& [wallName, c] : containers) {
+                    s << wallName << " spans (";
+                    point(c.min);
+                    s << ") to (";
+                    point(c.max);
+                    s << ") ";
+                }
                 s << ")";
                 throw InputError(f.where(), s.str());
             }
