@@ -62,10 +62,7 @@ public:
                 throw InputError(c.solution->locationOf("maxDivergenceIterations"),
                                  "maxDivergenceIterations must be at least 1", "maxDivergenceIterations");
         }
-        controls_.maxDensityError = Scalar(0.001);
-        controls_.norm = IterativeSolverControls::Norm::Average;
-        controls_.minIterations = 2;
-        controls_.maxIterations = 100;
+        controls_ = {Scalar(0.001), IterativeSolverControls::Norm::Average, 2, 100}; // SPlisHSPlasH's defaults
         controls_.read(c.solution);
     }
 

@@ -41,11 +41,7 @@ public:
     explicit Pcisph(const ModelContext& c)
         : rho0_(c.physics.rho0), clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)),
           adaptiveWalls_(readAdaptiveBoundaryVolume(c.dict, false)) {
-        controls_.maxDensityError = Scalar(0.01);
-        controls_.norm = IterativeSolverControls::Norm::Maximum;
-        controls_.minIterations = 3;
-        controls_.maxIterations = 100;
-        controls_.read(c.solution);
+        controls_.read(c.solution); // defaults: η 1 % of the maximum, 3 to 100 iterations
     }
 
     void initialise(SphSystem& s) override {
