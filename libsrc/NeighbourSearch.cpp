@@ -181,32 +181,52 @@ void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
     balanceWork(threads);
 }
 
+void NeighbourSearch::updateThreadSpeeds(int threads) {
+    if (int(threadSpeed_.size()) != threads) threadSpeed_.assign(threads, 1.0);
+    if (int(clocks_.size()) == threads) {
+        // each thread's work per second since the last build, relative to the mean, averaged
+        // over the last steps (weight 1/4 for the newest): one noisy step moves it little
+        const auto rate = [&](int t) { return clocks_[t].work / clocks_[t].seconds; };
+        double mean = 0;
+        for (int t = 0; t < threads; ++t)
+            mean += clocks_[t].seconds > 0 && clocks_[t].work > 0 ? rate(t) / threads : NAN;
+        if (mean > 0) { // every thread measured
+            double sum = 0;
+            for (int t = 0; t < threads; ++t) {
+                threadSpeed_[t] = 0.75 * threadSpeed_[t] + 0.25 * std::clamp(rate(t) / mean, 0.25, 4.0);
+                sum += threadSpeed_[t];
+            }
+            for (double& speed : threadSpeed_) speed *= threads / sum;
+        }
+    }
+    clocks_.assign(threads, ThreadClock{});
+}
+
 void NeighbourSearch::balanceWork(int threads) {
-    // work before particle i: its pairs (fluid and wall, or fluid only) plus a per-particle cost
-    // of about 'perParticle' pairs; thread t starts where that reaches t/T of the total
-    constexpr std::size_t perParticle = 8;
+    // thread t starts where the work (pairWork) reaches the share of the threads before it,
+    // each thread's share in proportion to its speed
+    updateThreadSpeeds(threads);
     const std::size_t n = fluidFluid_.size();
-    const auto balance = [&](std::vector<std::size_t>& ranges, bool walls) {
-        auto work = [&](std::size_t i) {
-            return std::size_t(fluidFluid_.offsets[i]) + (walls ? fluidBoundary_.offsets[i] : 0) + perParticle * i;
-        };
+    const auto balance = [&](std::vector<std::size_t>& ranges, PairWork kind) {
         ranges.assign(threads + 1, n);
         ranges[0] = 0;
-        const double total = double(work(n));
+        const double total = double(pairWork(n, kind));
+        double before = 0;
         std::size_t lo = 0;
         for (int t = 1; t < threads; ++t) {
-            const double target = total * t / threads;
-            std::size_t a = lo, b = n; // first i with work(i) >= target
+            before += threadSpeed_[t - 1];
+            const double target = total * before / threads;
+            std::size_t a = lo, b = n; // first i with pairWork(i) >= target
             while (a < b) {
                 const std::size_t mid = (a + b) / 2;
-                if (double(work(mid)) < target) a = mid + 1;
+                if (double(pairWork(mid, kind)) < target) a = mid + 1;
                 else b = mid;
             }
             ranges[t] = lo = a;
         }
     };
-    balance(workRanges_, true);
-    balance(fluidWorkRanges_, false);
+    balance(workRanges_, PairWork::FluidAndWall);
+    balance(fluidWorkRanges_, PairWork::Fluid);
 }
 
 std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) const {

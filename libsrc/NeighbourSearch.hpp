@@ -17,6 +17,8 @@
 // built once and boundary–boundary pairs are never searched during the run.
 // sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
 // the particle arrays every few steps for cache locality.
+// Pair loops run on thread ranges of equal work (workRange), split by the threads' measured
+// speeds.
 #pragma once
 
 #include "Types.hpp"
@@ -258,6 +260,12 @@ public:
     // neighbours as every other thread (the fluid near walls has more). From the lists of the
     // last build; an even split when T differs from the thread count they were made for.
     // PairWork::Fluid balances the fluid pairs alone, for passes that visit no wall pair.
+    // The split follows the threads' measured speeds: the balanced passes report how long each
+    // thread took for its range (recordTime), and each build gives a thread a share of the work
+    // in proportion to its speed, averaged over the last steps. On a shared or virtual machine
+    // one core is often slower than the other for seconds at a time; a thread there gets less
+    // work instead of the others waiting for it. Which thread computes a particle never changes
+    // a result, so the results stay independent of the split.
     enum class PairWork { FluidAndWall, Fluid };
     std::pair<std::size_t, std::size_t> workRange(int t, int threads, PairWork work = PairWork::FluidAndWall) const {
         const std::size_t n = fluidFluid_.size();
@@ -268,6 +276,17 @@ public:
 
     // The thread count the ranges were balanced for (the last build's).
     int workRangeThreads() const { return int(workRanges_.size()) - 1; }
+
+    // Thread t of a region balanced with workRange took 'seconds' for [first, last). Each
+    // thread writes only its own slot; ignored when the thread count is not the build's.
+    void recordTime(int t, int threads, PairWork work, std::size_t first, std::size_t last, double seconds) const {
+        if (threads != workRangeThreads() || threads < 2) return;
+        ThreadClock& c = clocks_[t];
+        c.work += double(pairWork(last, work) - pairWork(first, work));
+        c.seconds += seconds;
+    }
+    // The relative speeds the ranges were split by (mean 1), for tests and logs.
+    const std::vector<double>& threadSpeeds() const { return threadSpeed_; }
 
     const NeighbourList& fluidNeighbours() const { return fluidFluid_; }
     const NeighbourList& boundaryNeighbours() const { return fluidBoundary_; }
@@ -285,6 +304,18 @@ private:
     NeighbourList fluidFluid_, fluidBoundary_;
     std::vector<std::vector<Index>> threadBuffers_; // kept between steps: no allocation per step
     std::vector<std::size_t> workRanges_, fluidWorkRanges_; // threads + 1 bounds (workRange)
+    struct alignas(64) ThreadClock { // one cache line each: the threads write them concurrently
+        double work = 0, seconds = 0;
+    };
+    mutable std::vector<ThreadClock> clocks_; // since the last build (recordTime)
+    std::vector<double> threadSpeed_;         // relative speed of each thread, mean 1
+    static constexpr std::size_t perParticle = 8; // cost of a particle's own work, in pairs
+    // Work before particle i: its pairs (fluid and wall, or fluid only) plus perParticle each.
+    std::size_t pairWork(std::size_t i, PairWork work) const {
+        return std::size_t(fluidFluid_.offsets[i]) + (work == PairWork::FluidAndWall ? fluidBoundary_.offsets[i] : 0) +
+               perParticle * i;
+    }
+    void updateThreadSpeeds(int threads);
     void balanceWork(int threads);
 };
 
@@ -301,7 +332,13 @@ void forEachParticleBalanced(const NeighbourSearch& search, F&& f,
         threads = omp_get_num_threads();
 #endif
         const auto [first, last] = search.workRange(t, threads, work);
+#ifdef _OPENMP
+        const double start = omp_get_wtime();
+#endif
         for (std::size_t i = first; i < last; ++i) f(i);
+#ifdef _OPENMP
+        search.recordTime(t, threads, work, first, last, omp_get_wtime() - start);
+#endif
     }
 }
 

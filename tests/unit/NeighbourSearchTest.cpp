@@ -162,6 +162,52 @@ TEST(NeighbourSearch, WorkRangesTileTheParticlesWithEqualWork) {
 #endif
 }
 
+#ifdef _OPENMP
+// A thread that takes twice as long for its work gets a smaller range at the next builds, until
+// both finish together (a third of the work for the slow one); when it is as fast again, the
+// split goes back to halves. The speeds follow the times the passes record.
+TEST(NeighbourSearch, WorkRangesFollowTheThreadsMeasuredSpeeds) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<Scalar> u(0, 1);
+    std::vector<Vec3> fluid(6000);
+    for (auto& p : fluid) p = Vec3(u(rng), u(rng), 0);
+    NeighbourSearch search;
+    search.setup(0.04, 2, Vec3::Zero(), Vec3(1, 1, 0));
+    const auto share = [&](NeighbourSearch::PairWork kind) { // the first thread's part of the pairs
+        const auto [first, last] = search.workRange(0, 2, kind);
+        const auto& ff = search.fluidNeighbours();
+        return double(ff.offsets[last] - ff.offsets[first]) / double(ff.totalPairs());
+    };
+    const auto buildTimed = [&](double slowdown) { // the passes of a step, then the next build
+        for (auto kind : {NeighbourSearch::PairWork::FluidAndWall, NeighbourSearch::PairWork::Fluid})
+            for (int t = 0; t < 2; ++t) {
+                const auto [first, last] = search.workRange(t, 2, kind);
+                const auto& ff = search.fluidNeighbours();
+                const double seconds = 1e-9 * double(ff.offsets[last] - ff.offsets[first] + 8 * (last - first));
+                search.recordTime(t, 2, kind, first, last, t == 0 ? slowdown * seconds : seconds);
+            }
+        search.build(fluid);
+    };
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(2);
+    search.build(fluid);
+    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 0.5, 0.01);
+    for (int step = 0; step < 40; ++step) buildTimed(2.0);
+    EXPECT_NEAR(search.threadSpeeds()[0], 2.0 / 3, 0.01);
+    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 1.0 / 3, 0.01);
+    EXPECT_NEAR(share(NeighbourSearch::PairWork::FluidAndWall), 1.0 / 3, 0.01);
+    buildTimed(1.0); // one step does not undo it all: the speeds are averaged over steps
+    EXPECT_LT(share(NeighbourSearch::PairWork::Fluid), 0.45);
+    for (int step = 0; step < 40; ++step) buildTimed(1.0);
+    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 0.5, 0.01);
+    // times from another thread count are ignored
+    search.recordTime(0, 3, NeighbourSearch::PairWork::Fluid, 0, 10, 1.0);
+    search.build(fluid);
+    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 0.5, 0.01);
+    omp_set_num_threads(saved);
+}
+#endif
+
 TEST(NeighbourSearch, NonFiniteAndFarAwayPointsAreHandled) {
     std::vector<Vec3> pts = {Vec3(0.5, 0.5, 0), Vec3(0.52, 0.5, 0), Vec3(1e9, 1e9, 0),
                              Vec3(1e9 + 0.01, 1e9, 0), Vec3(std::nan(""), 0, 0)};
