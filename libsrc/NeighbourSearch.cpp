@@ -100,8 +100,9 @@ void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
 namespace {
 // Fills 'list' for n query points with gather(i, reserve) → count, which writes point i's
 // neighbours to the array reserve(room) gives it. Each thread handles a contiguous block of
-// points in its own buffer (kept in 'buffers' between calls); the blocks are concatenated in
-// order, so the lists do not depend on the thread count.
+// points; the first writes straight into list.indices, where its block goes, the others into
+// their own buffers (kept in 'buffers' between calls), copied after it in order, so the lists
+// do not depend on the thread count.
 template <class Gather>
 void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::vector<Index>>& buffers,
                          const NeighbourSearch& search, Gather&& gather) {
@@ -121,7 +122,7 @@ void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::ve
 #endif
         const auto [begin, end] = search.workRange(t, threads);
         first[t] = begin;
-        std::vector<Index>& buffer = buffers[t];
+        std::vector<Index>& buffer = t == 0 ? list.indices : buffers[t];
         std::size_t size = 0;
         auto reserve = [&](std::size_t room) {
             if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
@@ -137,7 +138,7 @@ void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::ve
     for (std::size_t i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
     list.indices.resize(list.offsets[n]);
 #pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (int t = 0; t < threads; ++t)
+    for (int t = 1; t < threads; ++t)
         std::copy_n(buffers[t].begin(), used[t], list.indices.begin() + list.offsets[first[t]]);
 }
 } // namespace
