@@ -264,8 +264,8 @@ public:
     // thread took for its range (recordTime), and each build gives a thread a share of the work
     // in proportion to its speed, averaged over the last steps. On a shared or virtual machine
     // one core is often slower than the other for tens of steps at a time; a thread there gets
-    // less work instead of the others waiting for it. Which thread computes a particle never changes
-    // a result, so the results stay independent of the split.
+    // less work instead of the others waiting for it. Which thread computes a particle never
+    // changes a result, so the results stay independent of the split.
     enum class PairWork { FluidAndWall, Fluid };
     std::pair<std::size_t, std::size_t> workRange(int t, int threads, PairWork work = PairWork::FluidAndWall) const {
         const std::size_t n = fluidFluid_.size();
