@@ -7,9 +7,9 @@
 // cubic spline at q = 1/2) are reproduced. Tests hold the table against the analytic kernel.
 //
 // Pair loops use the tables in the squared distance s = r² (WSq, gradWSq): W(√s) and
-// dW/dr(√s)/√s on equal intervals of [0, h²), so a pair costs neither a square root nor a
-// division. Below r = h/8, where √s is not smooth enough to interpolate and particles are
-// rarely found, they fall back to the tables in r.
+// dW/dr(√s)/√s on equal intervals of [0, h²) (a quarter as many as in r, small enough for L1),
+// so a pair costs neither a square root nor a division. Below r = h/4, where √s is not smooth
+// enough to interpolate and particles are rarely found, they fall back to the tables in r.
 #pragma once
 
 #include "Kernel.hpp"
@@ -47,7 +47,7 @@ public:
     Scalar WSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
         const int k = static_cast<int>(s);
-        if (k >= intervals_ || r2 < Scalar(0)) return Scalar(0);
+        if (k >= sqIntervals_ || r2 < Scalar(0)) return Scalar(0);
         if (k < nearIntervals_) return W(std::sqrt(r2));
         return horner(wSq_[k], s - Scalar(k));
     }
@@ -55,7 +55,7 @@ public:
     Scalar gradFactorSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
         const int k = static_cast<int>(s);
-        if (k >= intervals_ || r2 < Scalar(0)) return Scalar(0);
+        if (k >= sqIntervals_ || r2 < Scalar(0)) return Scalar(0);
         if (k < nearIntervals_) {
             const Scalar r = std::sqrt(r2);
             return r > Scalar(0) ? dWdr(r) / r : Scalar(0);
@@ -76,12 +76,12 @@ private:
         return horner(table[k], s - Scalar(k));
     }
     static Scalar horner(const Block& c, Scalar t) { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }
-    // f on 'intervals_' equal intervals of [0, end)
-    template <class F> std::vector<Block> tabulate(F&& f, double end) const;
+    // f on 'intervals' equal intervals of [0, end)
+    template <class F> std::vector<Block> tabulate(F&& f, double end, int intervals) const;
 
     const Kernel* kernel_ = nullptr; // for enableLaplacian(); owned by the caller
     Scalar h_ = 0, invDr_ = 0, invDs_ = 0, w0_ = 0;
-    int dim_ = 3, intervals_ = 0, nearIntervals_ = 0; // r² intervals below (h/8)²
+    int dim_ = 3, intervals_ = 0, sqIntervals_ = 0, nearIntervals_ = 0; // r² intervals below (h/4)²
     std::vector<Block> w_, dw_, lap_, wSq_, gradSq_;
 };
 
