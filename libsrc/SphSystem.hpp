@@ -43,6 +43,10 @@ struct SphSystem {
     // Set by the pressure model: numerical sound speed c0 (0 for incompressible solvers),
     // used by artificial viscosity and the time-step limit.
     Scalar soundSpeed = 0;
+    // Set by a pressure model that keeps ∇_i W_ij of every fluid pair of the step's lists, in
+    // list order (dfsph): valid from its computeDensity until the next neighbour search, so the
+    // models evaluated after it in the step (viscosity) stream it instead of the kernel table.
+    const std::vector<Vec3>* fluidPairGradients = nullptr;
 
     double time = 0;
     long step = 0;

@@ -22,7 +22,8 @@
 //      solves on until the real density meets η too (δ warm-starts from the last step: field
 //      dfsphDensityOffset); about 1.2 such checks a step, 15 % more time.
 // Positions do not change within the solves, so ∇W of every fluid pair is computed once, with the
-// density (computeDensity, after the neighbour search), and the solver passes only stream it; the
+// density (computeDensity, after the neighbour search), and the solver passes (and the viscosity,
+// through SphSystem::fluidPairGradients) only stream it; the
 // walls are at rest, so their terms need only Σ_b M_b ∇W_ib per particle, also computed once.
 // Both solves warm-start from half of the last step's κ (fields dfsphKappa, dfsphKappaV:
 // restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
@@ -114,6 +115,7 @@ public:
                                    ? 1 / denominator
                                    : Scalar(0);
         });
+        s.fluidPairGradients = &gradFluid_;
     }
 
     void addPressureAcceleration(SphSystem& s, Scalar dt) override {

@@ -42,27 +42,35 @@ public:
         const Scalar wall = wallFactor_;
         // −m Π_ij ∇W_ij = 2 m α c h · v_ij·r_ij / ((r² + ε)(ρ_i + ρ_j)) ∇W_ij: one division a pair
         const Scalar fluidScale = 2 * m * ac * h, wallScale = wall * ac * h;
-        forEachParticleBalanced(s.search, [&](std::size_t i) {
-            const Vec3 vi = v[i];
-            const Scalar rhoi = rho[i];
-            Vec3 acc = Vec3::Zero();
-            forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                // approaching pairs only; min() instead of a branch (taken for about half the
-                // pairs, unpredictably)
-                const Scalar vr = std::min((vi - v[j]).dot(rij), Scalar(0));
-                acc += (vr / ((r2 + eps) * (rhoi + rho[j]))) * kt.gradWSq(rij, r2);
-            });
-            acc *= fluidScale;
-            if (psi && wall != 0) {
-                Vec3 accWall = Vec3::Zero();
-                forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    const Scalar vr = std::min(vi.dot(rib), Scalar(0));
-                    accWall += (psi[b] * vr / (r2 + eps)) * kt.gradWSq(rib, r2);
+        const auto& ff = s.search.fluidNeighbours();
+        // ∇W_ij from the pressure model's cache of the step's pairs when it keeps one, else the table
+        const Vec3* cached = s.fluidPairGradients ? s.fluidPairGradients->data() : nullptr;
+        const auto pass = [&](auto gradient) {
+            forEachParticleBalanced(s.search, [&](std::size_t i) {
+                const Vec3 vi = v[i];
+                const Scalar rhoi = rho[i];
+                Vec3 acc = Vec3::Zero();
+                std::uint32_t k = ff.offsets[i];
+                forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
+                    // approaching pairs only; min() instead of a branch (taken for about half
+                    // the pairs, unpredictably)
+                    const Scalar vr = std::min((vi - v[j]).dot(rij), Scalar(0));
+                    acc += (vr / ((r2 + eps) * (rhoi + rho[j]))) * gradient(k++, rij, r2);
                 });
-                acc += (wallScale / rhoi) * accWall;
-            }
-            a[i] += acc;
-        });
+                acc *= fluidScale;
+                if (psi && wall != 0) {
+                    Vec3 accWall = Vec3::Zero();
+                    forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                        const Scalar vr = std::min(vi.dot(rib), Scalar(0));
+                        accWall += (psi[b] * vr / (r2 + eps)) * kt.gradWSq(rib, r2);
+                    });
+                    acc += (wallScale / rhoi) * accWall;
+                }
+                a[i] += acc;
+            });
+        };
+        if (cached) pass([&](std::uint32_t k, const Vec3&, Scalar) { return cached[k]; });
+        else pass([&](std::uint32_t, const Vec3& rij, Scalar r2) { return kt.gradWSq(rij, r2); });
     }
 
 private:
