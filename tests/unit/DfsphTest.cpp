@@ -1,5 +1,6 @@
 // dfsph (Bender & Koschier 2015): the density solve brings a compressed block to η and the
-// step taken with its acceleration really decompresses it, momentum is conserved, the
+// step taken with its acceleration really decompresses it, momentum is conserved,
+// checkPositions holds the real density after the step to η (also against a wall), the
 // divergence solve removes a converging velocity field, a hydrostatic column (the
 // hydrostaticTank2D tutorial run in-process) stays at rest near ρ0, and bad tolerances are
 // refused.
@@ -106,6 +107,44 @@ TEST(Dfsph, CheckPositionsHoldsTheRealDensityToEta) {
         EXPECT_GT(real[0], 2 * eta) << dim << "D: the linearisation error shows without the check";
         EXPECT_LE(real[1], 1.05 * eta) << dim << "D";
     }
+}
+
+// The same at a wall: a 3D block resting against a wall (three layers of wall particles
+// continuing its lattice) driven into it at 0.15 h in one step. Wall particles it comes within
+// h of in the step are not in the step's wall list; checkPositions finds them at the predicted
+// positions, so the real density after the step (summed afresh) meets η: 0.079 %, where the
+// wall list alone gave 0.150 %. (In 2D the same drive is too strong for the check: the solve
+// stops at maxIterations with the real density 12 % over ρ0, with or without the walls found.)
+TEST(Dfsph, CheckPositionsHoldsTheRealDensityToEtaAgainstAWall) {
+    log::setQuiet(true);
+    const int n = 10;
+    const double eta = 1e-3, dt = 1e-3;
+    Scene sc(3);
+    sc.block(n, 1.0);
+    const double dx = sc.s.physics.particleSpacing, h = sc.s.physics.supportRadius;
+    std::vector<Vec3> wall;
+    for (int k = -3; k < n + 3; ++k)
+        for (int j = -3; j < n + 3; ++j)
+            for (int c = 1; c <= 3; ++c) wall.emplace_back(-(c - 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx);
+    sc.s.boundary.resize(wall.size());
+    std::copy(wall.begin(), wall.end(), sc.s.boundary.position().begin());
+    sc.s.search.setBoundary(wall);
+    sc.s.search.build(sc.s.fluid.position());
+    for (auto& v : sc.s.fluid.velocity()) v = Vec3(-0.15 * h / dt, 0, 0);
+    auto p = sc.pressure("type dfsph; divergenceSolve no; checkPositions yes;",
+                         "maxDensityError 0.001; densityErrorNorm maximum; minIterations 2; maxIterations 500;");
+    p->computeDensity(sc.s);
+    const double before = sc.maxCompression();
+    std::fill(sc.s.fluid.acceleration().begin(), sc.s.fluid.acceleration().end(), Vec3::Zero());
+    p->addPressureAcceleration(sc.s, dt);
+    const SolverStats st = p->lastSolve();
+    EXPECT_TRUE(st.converged);
+    EXPECT_LE(before, eta);
+    sc.advance(*p, dt);
+    const double after = sc.maxCompression();
+    std::cout << "block driven into a wall at 0.15 h a step: " << st.iterations << " iterations; real density "
+              << 100 * after << " % over rho0 after the step\n";
+    EXPECT_LE(after, 1.01 * eta);
 }
 
 TEST(Dfsph, DivergenceSolveRemovesAConvergingVelocityField) {
