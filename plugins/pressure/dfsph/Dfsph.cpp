@@ -21,11 +21,11 @@
 //      the density at x + Δt v* once the solve meets η, keeps the difference δ_i in ρ*_i and
 //      solves on until the real density meets η too (δ warm-starts from the last step: field
 //      dfsphDensityOffset; the wall particles within h of the new positions are found again in
-//      the wall grid). About 1.2 such checks a step, 25 % more time in the dam-break cube.
+//      the wall grid). About 1.2 such checks a step, 23 % more time a step in the dam-break cube.
 // Positions do not change within the solves, so ∇W of every fluid pair is computed once, with the
 // density (computeDensity, after the neighbour search), and the solver passes (and the viscosity,
-// through SphSystem::fluidPairGradients) only stream it; the
-// walls are at rest, so their terms need only Σ_b M_b ∇W_ib per particle, also computed once.
+// through SphSystem::fluidPairGradients) only stream it; the walls are at rest, so their terms
+// need only Σ_b M_b ∇W_ib per particle, also computed once.
 // Both solves warm-start from half of the last step's κ (fields dfsphKappa, dfsphKappaV:
 // restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
 // Euler gives v_{n+1} = v*, x_{n+1} = x_n + Δt v*. Wall particles b have mass M_b = ρ0 V_b

@@ -2,7 +2,8 @@
 // a_i = −Σ_j m_j Π_ij ∇_i W_ij,  Π_ij = −α c̄ μ_ij / ρ̄_ij for v_ij·r_ij < 0 (else 0),
 // μ_ij = h v_ij·r_ij / (r² + 0.01 h²), with h the support radius, c̄ the sound speed.
 // Walls act as particles at rest with the fluid particle's density (wallFactor scales them;
-// 0 = free slip). Pairwise antisymmetric: momentum is conserved among fluid particles.
+// 0 = free slip). Pairwise antisymmetric: momentum is conserved among fluid particles. ∇W_ij is
+// read from the pressure model's cache of the step's pairs when it keeps one (dfsph).
 //
 //   viscosity { type artificial; alpha 0.05; soundSpeed 20; wallFactor 1; }
 #include "Plugin.hpp"
