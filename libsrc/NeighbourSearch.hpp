@@ -94,16 +94,17 @@ public:
     }
 
     // Writes every point k of the built set with |p − x_k|² < r2, k ≠ self, to the array
-    // reserve(candidates) returns (room for 'candidates' indices: the points in the cells
-    // around p), and returns how many. Same points, in the same order, as forEachWithin on a
-    // non-periodic grid; the scan runs over the grid's own cell-ordered copy of the positions
-    // without branches (the hot loop of the step's lists).
+    // reserve(room) returns (room for 'room' indices: the points in the cells around p, plus
+    // scanSpill slots a vector store may write past the last point kept), and returns how many.
+    // Same points, in the same order, as forEachWithin on a non-periodic grid; the scan runs
+    // over the grid's own cell-ordered copy of the positions without branches (the hot loop of
+    // the step's lists).
     template <class Reserve> std::size_t gatherWithin(const Vec3& p, Scalar r2, Index self, Reserve&& reserve) const {
         RowRange rows[9];
         const int nRows = candidateRows(p, rows);
         std::size_t candidates = 0;
         for (int r = 0; r < nRows; ++r) candidates += rows[r].last - rows[r].first;
-        Index* out = reserve(candidates);
+        Index* out = reserve(candidates + scanSpill);
         std::size_t count = 0;
         for (int r = 0; r < nRows; ++r) count += scanRow(rows[r], p, r2, self, out + count);
         return count;
@@ -126,13 +127,20 @@ public:
     std::uint64_t mortonCode(const Vec3& p) const;
     std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
 
+    // Slots past the found points that gatherWithin may overwrite (one vector of indices but one).
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    static constexpr std::size_t scanSpill = 64 / sizeof(Scalar) - 1;
+#else
+    static constexpr std::size_t scanSpill = 0;
+#endif
+
 private:
     struct RowRange {
         Index first, last; // slots in sorted_ of a row of up to three cells along x
     };
     // Writes the points of one row within r2 of p (except self) to out; returns how many. With
     // AVX-512 eight (double) or sixteen (float) points are tested at once and their indices
-    // compressed; the scalar loop (the remainder, or all without AVX-512) is branch-free.
+    // compressed, the row's last block with masked loads; without AVX-512 a branch-free scalar loop.
     std::size_t scanRow(RowRange row, const Vec3& p, Scalar r2, Index self, Index* out) const {
         const Scalar px = p[0], py = p[1], pz = p[2];
         const Scalar* sx = cellX_.data();
@@ -142,19 +150,23 @@ private:
         std::size_t count = 0;
         Index k = row.first;
 #if defined(__AVX512F__) && defined(__AVX512VL__)
+        // the row's last, partial block with masked loads: no scalar remainder
         if constexpr (std::is_same_v<Scalar, double>) {
             const __m512d vx = _mm512_set1_pd(px), vy = _mm512_set1_pd(py), vz = _mm512_set1_pd(pz);
             const __m512d vr2 = _mm512_set1_pd(r2);
             const __m256i vself = _mm256_set1_epi32(int(self));
-            for (; k + 8 <= row.last; k += 8) {
-                const __m512d dx = _mm512_sub_pd(vx, _mm512_loadu_pd(sx + k));
-                const __m512d dy = _mm512_sub_pd(vy, _mm512_loadu_pd(sy + k));
-                const __m512d dz = _mm512_sub_pd(vz, _mm512_loadu_pd(sz + k));
+            for (; k < row.last; k += 8) {
+                const Index left = row.last - k;
+                const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1);
+                const __m512d dx = _mm512_sub_pd(vx, _mm512_maskz_loadu_pd(valid, sx + k));
+                const __m512d dy = _mm512_sub_pd(vy, _mm512_maskz_loadu_pd(valid, sy + k));
+                const __m512d dz = _mm512_sub_pd(vz, _mm512_maskz_loadu_pd(valid, sz + k));
                 const __m512d d2 = _mm512_fmadd_pd(dz, dz, _mm512_fmadd_pd(dy, dy, _mm512_mul_pd(dx, dx)));
-                const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sorted + k));
-                const __mmask8 keep = _mm512_cmp_pd_mask(d2, vr2, _CMP_LT_OQ) & ~_mm256_cmpeq_epi32_mask(j, vself);
-                // compress in a register, store all lanes (the lanes past the kept ones are
-                // overwritten later; they stay within the candidates' room). A masked
+                const __m256i j = _mm256_maskz_loadu_epi32(valid, sorted + k);
+                const __mmask8 keep =
+                    _mm512_mask_cmp_pd_mask(valid, d2, vr2, _CMP_LT_OQ) & ~_mm256_cmpeq_epi32_mask(j, vself);
+                // compress in a register, store all eight lanes (the lanes past the kept ones are
+                // overwritten later; gatherWithin reserves room for them). A masked
                 // compress-store to memory is microcoded on some CPUs (AMD Zen 4): far slower.
                 _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + count), _mm256_maskz_compress_epi32(keep, j));
                 count += std::size_t(__builtin_popcount(keep));
@@ -163,13 +175,16 @@ private:
             const __m512 vx = _mm512_set1_ps(px), vy = _mm512_set1_ps(py), vz = _mm512_set1_ps(pz);
             const __m512 vr2 = _mm512_set1_ps(r2);
             const __m512i vself = _mm512_set1_epi32(int(self));
-            for (; k + 16 <= row.last; k += 16) {
-                const __m512 dx = _mm512_sub_ps(vx, _mm512_loadu_ps(sx + k));
-                const __m512 dy = _mm512_sub_ps(vy, _mm512_loadu_ps(sy + k));
-                const __m512 dz = _mm512_sub_ps(vz, _mm512_loadu_ps(sz + k));
+            for (; k < row.last; k += 16) {
+                const Index left = row.last - k;
+                const __mmask16 valid = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1);
+                const __m512 dx = _mm512_sub_ps(vx, _mm512_maskz_loadu_ps(valid, sx + k));
+                const __m512 dy = _mm512_sub_ps(vy, _mm512_maskz_loadu_ps(valid, sy + k));
+                const __m512 dz = _mm512_sub_ps(vz, _mm512_maskz_loadu_ps(valid, sz + k));
                 const __m512 d2 = _mm512_fmadd_ps(dz, dz, _mm512_fmadd_ps(dy, dy, _mm512_mul_ps(dx, dx)));
-                const __m512i j = _mm512_loadu_si512(sorted + k);
-                const __mmask16 keep = _mm512_cmp_ps_mask(d2, vr2, _CMP_LT_OQ) & ~_mm512_cmpeq_epi32_mask(j, vself);
+                const __m512i j = _mm512_maskz_loadu_epi32(valid, sorted + k);
+                const __mmask16 keep =
+                    _mm512_mask_cmp_ps_mask(valid, d2, vr2, _CMP_LT_OQ) & ~_mm512_cmpeq_epi32_mask(j, vself);
                 _mm512_storeu_si512(out + count, _mm512_maskz_compress_epi32(keep, j));
                 count += std::size_t(__builtin_popcount(keep));
             }
