@@ -33,6 +33,10 @@ void UniformGrid::setup(Scalar cellSize, int dimension, const Vec3& domainMin, c
     if (cells > 2e8)
         throw std::runtime_error("neighbour search: the domain is too large for the support radius (" +
                                  std::to_string(cells) + " cells)");
+    for (int a = 0; a < 3; ++a) {
+        latticeDims_[a] = dims_[a];
+        first_[a] = 0;
+    }
     cellStart_.assign(std::size_t(cells) + 1, 0);
     sorted_.clear();
 }
@@ -51,12 +55,31 @@ std::uint64_t spreadBits(std::uint64_t v) { // 21 bits -> every third bit
 
 std::uint64_t UniformGrid::mortonCode(const Vec3& p) const {
     int c[3];
-    cellCoords(p, c);
+    latticeCoords(p, c);
     return spreadBits(c[0]) | spreadBits(c[1]) << 1 | spreadBits(c[2]) << 2;
 }
 
 void UniformGrid::build(const std::vector<Vec3>& points) {
-    const std::size_t n = points.size(), cells = cellCount();
+    const std::size_t n = points.size();
+    // The grid covers the range of cells the points occupy, not the whole domain box (several
+    // times larger: room for splashes), so the passes over the cells below touch only that.
+    // The cells stay those of the set-up lattice: the lists do not depend on the range.
+    int lo[3] = {latticeDims_[0], latticeDims_[1], latticeDims_[2]}, hi[3] = {-1, -1, -1};
+#pragma omp parallel for schedule(static) reduction(min : lo[:3]) reduction(max : hi[:3])
+    for (std::size_t i = 0; i < n; ++i) {
+        int c[3];
+        latticeCoords(points[i], c);
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], c[a]);
+            hi[a] = std::max(hi[a], c[a]);
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        const bool all = periodic_.axis[a] || lo[a] > hi[a]; // periodic, or no points
+        first_[a] = all ? 0 : lo[a];
+        dims_[a] = all ? latticeDims_[a] : hi[a] - lo[a] + 1;
+    }
+    const std::size_t cells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
     cellOf_.resize(n);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -65,12 +88,12 @@ void UniformGrid::build(const std::vector<Vec3>& points) {
         cellOf_[i] = Index((std::size_t(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0]);
     }
     // stable counting sort: cellStart_[c] = first slot of cell c
-    std::fill(cellStart_.begin(), cellStart_.end(), 0);
-    for (std::size_t i = 0; i < n; ++i) ++cellStart_[cellOf_[i] + 1];
-    for (std::size_t c = 0; c < cells; ++c) cellStart_[c + 1] += cellStart_[c];
+    cellStart_.assign(cells + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++cellStart_[cellOf_[i]];                // the count of cell c
+    for (std::size_t c = 1; c < cells; ++c) cellStart_[c] += cellStart_[c - 1]; // one past its last slot
     sorted_.resize(n);
-    std::vector<Index> fill(cellStart_.begin(), cellStart_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) sorted_[fill[cellOf_[i]]++] = Index(i);
+    for (std::size_t i = n; i-- > 0;) sorted_[--cellStart_[cellOf_[i]]] = Index(i); // the last first
+    cellStart_[cells] = Index(n);
     cellX_.resize(n);
     cellY_.resize(n);
     cellZ_.resize(n);
@@ -137,9 +160,18 @@ void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::ve
     }
     for (std::size_t i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
     list.indices.resize(list.offsets[n]);
-#pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (int t = 1; t < threads; ++t)
-        std::copy_n(buffers[t].begin(), used[t], list.indices.begin() + list.offsets[first[t]]);
+    // every thread copies a slice of every other thread's buffer
+#pragma omp parallel num_threads(threads)
+    {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+#endif
+        for (int u = 1; u < threads; ++u) {
+            const std::size_t lo = used[u] * t / threads, hi = used[u] * (t + 1) / threads;
+            std::copy(buffers[u].begin() + lo, buffers[u].begin() + hi, list.indices.begin() + list.offsets[first[u]] + lo);
+        }
+    }
 }
 } // namespace
 

@@ -1,9 +1,11 @@
 // Spindrift — neighbour search on a uniform grid.
 //
-// Cell size = kernel support h. The grid covers the case's domain box; particles outside it
-// are clamped into the border cells (still correct — cells become supersets — only slower),
-// so a runaway particle never makes the grid explode. Points are bucketed with a stable
-// counting sort, so neighbour order depends only on the input, never on the thread count.
+// Cell size = kernel support h. The cells are a lattice over the case's domain box; each
+// build covers only the range of them its points occupy (the box leaves room for splashes and
+// has several times more cells). Particles outside the box are clamped into the border cells
+// (still correct — cells become supersets — only slower), so a runaway particle never makes
+// the grid explode. Points are bucketed with a stable counting sort, so neighbour order
+// depends only on the input, never on the thread count or the range a build covers.
 //
 // Periodic axes (Periodicity): the grid wraps around them and distances use the minimum
 // image; a list built with periodicity carries a pointer to it so pair loops
@@ -23,6 +25,7 @@
 
 #include "Types.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 #include <utility>
@@ -111,19 +114,13 @@ public:
     }
 
     // Cell of p (points outside the grid are clamped into the border cells).
-    void cellCoords(const Vec3& p, int c[3]) const {
-        for (int a = 0; a < 3; ++a) {
-            const Scalar s = (p[a] - origin_[a]) * invCell_[a];
-            if (periodic_.axis[a] && std::isfinite(s)) {
-                const long k = long(std::floor(s)) % dims_[a];
-                c[a] = int(k < 0 ? k + dims_[a] : k);
-                continue;
-            }
-            // clamp (also maps NaN to cell 0)
-            c[a] = s >= Scalar(0) ? (s < Scalar(dims_[a] - 1) ? int(s) : dims_[a] - 1) : 0;
-        }
-        if (dim_ == 2) c[2] = 0;
+    void cellCoords(const Vec3& p, int c[3]) const { coords(p, first_, dims_, c); }
+    // Cell of p in the lattice of the set-up domain box (clamped into it).
+    void latticeCoords(const Vec3& p, int c[3]) const {
+        static constexpr int none[3] = {0, 0, 0};
+        coords(p, none, latticeDims_, c);
     }
+    // Z-order (Morton) code of p's lattice cell (independent of the range the last build covers).
     std::uint64_t mortonCode(const Vec3& p) const;
     std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
 
@@ -135,6 +132,22 @@ public:
 #endif
 
 private:
+    // Cell of p within cells first .. first + dims − 1 of the set-up lattice, clamped into them
+    // (NaN to the first); periodic axes wrap.
+    void coords(const Vec3& p, const int first[3], const int dims[3], int c[3]) const {
+        for (int a = 0; a < 3; ++a) {
+            const Scalar s = (p[a] - origin_[a]) * invCell_[a];
+            if (periodic_.axis[a] && std::isfinite(s)) {
+                const long k = long(std::floor(s)) % dims[a];
+                c[a] = int(k < 0 ? k + dims[a] : k);
+                continue;
+            }
+            const int last = first[a] + dims[a] - 1;
+            c[a] = std::max((s >= Scalar(0) ? (s < Scalar(last) ? int(s) : last) : 0) - first[a], 0);
+        }
+        if (dim_ == 2) c[2] = 0;
+    }
+
     struct RowRange {
         Index first, last; // slots in sorted_ of a row of up to three cells along x
     };
@@ -244,7 +257,9 @@ private:
     Vec3 invCell_ = Vec3::Ones();
     Periodicity periodic_;
     int dim_ = 3;
-    int dims_[3] = {1, 1, 1};
+    int latticeDims_[3] = {1, 1, 1}; // cells of the set-up domain box
+    int first_[3] = {0, 0, 0};       // the built grid: cells first_ .. first_ + dims_ − 1 of that lattice,
+    int dims_[3] = {1, 1, 1};        // the range the points occupy (periodic axes: all)
     std::vector<Index> cellStart_; // size cells + 1
     std::vector<Index> sorted_;    // point indices bucketed by cell
     std::vector<Index> cellOf_;    // scratch
