@@ -128,7 +128,9 @@ public:
         auto& p = s.fluid.pressure();
         if (gradFluid_.size() != s.search.fluidNeighbours().totalPairs() || wallGradient_.size() != n)
             throw std::logic_error("dfsph: computeDensity must run after each neighbour search (it caches the gradients)");
-        velocity_.assign(v.begin(), v.end());
+        velocity_.resize(n);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) velocity_[i] = v[i];
         rate_.resize(n);
         kappaOverRho_.resize(n);
         const Scalar invDt = 1 / dt, invDt2 = invDt * invDt;
