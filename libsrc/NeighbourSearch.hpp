@@ -124,7 +124,7 @@ public:
     std::uint64_t mortonCode(const Vec3& p) const;
     std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
 
-    // Slots past the found points that gatherWithin may overwrite (one vector of indices but one).
+    // Slots past the found points that gatherWithin may overwrite (a vector of indices less one).
 #if defined(__AVX512F__) && defined(__AVX512VL__)
     static constexpr std::size_t scanSpill = 64 / sizeof(Scalar) - 1;
 #else

@@ -208,6 +208,46 @@ TEST(NeighbourSearch, WorkRangesFollowTheThreadsMeasuredSpeeds) {
 }
 #endif
 
+// Each build's grid covers only the cells its points occupy; queries from outside that range
+// (fluid beyond the walls' range, a point outside the domain) still find every neighbour.
+TEST_P(NeighbourSearchTest, GridCoversTheOccupiedCellsOnly) {
+    const int dim = GetParam();
+    const Scalar h = 0.07;
+    std::mt19937 rng(7);
+    const auto inBox = [&](std::size_t n, Scalar lo, Scalar hi) {
+        std::uniform_real_distribution<Scalar> u(lo, hi);
+        std::vector<Vec3> p(n);
+        for (auto& x : p) x = Vec3(u(rng), u(rng), dim == 3 ? u(rng) : Scalar(0));
+        return p;
+    };
+    auto wall = inBox(800, 1.0, 1.5);
+    wall.push_back(Vec3(1.5, 1.2, dim == 3 ? 1.2 : 0));
+    auto fluid = inBox(dim == 2 ? 1500 : 3000, 0.8, 1.9);
+    fluid.push_back(Vec3(1.55, 1.2, dim == 3 ? 1.2 : 0)); // in the cell after the walls' last one
+    fluid.push_back(Vec3(9, 9, dim == 3 ? 9 : 0));         // outside the domain
+    NeighbourSearch search;
+    search.setup(h, dim, Vec3::Zero(), Vec3(4, 4, dim == 3 ? 4 : 0));
+    const double latticeCells = std::pow(std::ceil(4 / h) + 1, dim);
+    search.setBoundary(wall);
+    EXPECT_LT(double(search.boundaryGrid().cellCount()), latticeCells / 50);
+    search.build(fluid);
+    const auto& ff = search.fluidNeighbours();
+    const auto& fb = search.boundaryNeighbours();
+    std::size_t wallPairs = 0;
+    for (std::size_t i = 0; i < fluid.size(); ++i) {
+        ASSERT_EQ(std::set<Index>(ff.begin(i), ff.end(i)), bruteForce(fluid, fluid[i], h, long(i))) << i;
+        ASSERT_EQ(std::set<Index>(fb.begin(i), fb.end(i)), bruteForce(wall, fluid[i], h, -1)) << i;
+        wallPairs += fb.count(i);
+    }
+    EXPECT_GT(fb.count(fluid.size() - 2), 0u); // the query from outside the walls' range found some
+    EXPECT_GT(wallPairs, fluid.size() / 4);
+    // every build covers its own points' range: the far point's clamped cell spans the domain
+    EXPECT_GT(double(search.fluidGrid().cellCount()), latticeCells / 3);
+    fluid.pop_back();
+    search.build(fluid);
+    EXPECT_LT(double(search.fluidGrid().cellCount()), latticeCells / 10);
+}
+
 TEST(NeighbourSearch, NonFiniteAndFarAwayPointsAreHandled) {
     std::vector<Vec3> pts = {Vec3(0.5, 0.5, 0), Vec3(0.52, 0.5, 0), Vec3(1e9, 1e9, 0),
                              Vec3(1e9 + 0.01, 1e9, 0), Vec3(std::nan(""), 0, 0)};
