@@ -115,11 +115,6 @@ public:
 
     // Cell of p (points outside the grid are clamped into the border cells).
     void cellCoords(const Vec3& p, int c[3]) const { coords(p, first_, dims_, c); }
-    // Cell of p in the lattice of the set-up domain box (clamped into it).
-    void latticeCoords(const Vec3& p, int c[3]) const {
-        static constexpr int none[3] = {0, 0, 0};
-        coords(p, none, latticeDims_, c);
-    }
     // Z-order (Morton) code of p's lattice cell (independent of the range the last build covers).
     std::uint64_t mortonCode(const Vec3& p) const;
     std::size_t cellCount() const { return cellStart_.empty() ? 0 : cellStart_.size() - 1; }
@@ -132,6 +127,11 @@ public:
 #endif
 
 private:
+    // Cell of p in the lattice of the set-up domain box (clamped into it).
+    void latticeCoords(const Vec3& p, int c[3]) const {
+        static constexpr int none[3] = {0, 0, 0};
+        coords(p, none, latticeDims_, c);
+    }
     // Cell of p within cells first .. first + dims − 1 of the set-up lattice, clamped into them
     // (NaN to the first); periodic axes wrap.
     void coords(const Vec3& p, const int first[3], const int dims[3], int c[3]) const {
