@@ -18,6 +18,10 @@ public:
     virtual void initialise(SphSystem&) {}
     virtual void computeDensity(SphSystem& system) = 0;
     virtual void addPressureAcceleration(SphSystem& system, Scalar dt) = 0;
+    // True when the model's last solve left the neighbour lists (and its density) of exactly
+    // the current fluid positions, so the next evaluation need not search (dfsph's
+    // checkPositions searches at the positions its step leads to).
+    virtual bool searchedAt(const SphSystem&) const { return false; }
     // Numerical sound speed for the CFL limit; 0 for incompressible solvers.
     virtual Scalar soundSpeed() const { return 0; }
     virtual SolverStats lastSolve() const { return {}; }

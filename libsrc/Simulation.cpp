@@ -285,7 +285,7 @@ std::string Simulation::schemesSummary() const {
 
 void Simulation::evaluate(Scalar dt) {
     auto& s = system_;
-    s.search.build(s.fluid.position());
+    if (!pressure_->searchedAt(s)) s.search.build(s.fluid.position());
     s.fluidPairGradients = nullptr; // the last lists' (a pressure model may set it again)
     pressure_->computeDensity(s);
     if (boundaryModel_) boundaryModel_->update(s);
