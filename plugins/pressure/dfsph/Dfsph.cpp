@@ -28,9 +28,8 @@
 //      dam-break cube under CFL: 1.08 checks a step, 9 % more time a step than without.
 // The positions the solves linearise about do not change (but at a failed check), so ∇W of every
 // fluid pair is computed once, with the density (computeDensity, after the neighbour search), and
-// the solver passes (and the viscosity,
-// through SphSystem::fluidPairGradients) only stream it; the walls are at rest, so their terms
-// need only Σ_b M_b ∇W_ib per particle, also computed once.
+// the solver passes (and the viscosity, through SphSystem::fluidPairGradients) only stream it;
+// the walls are at rest, so their terms need only Σ_b M_b ∇W_ib per particle, also computed once.
 // Both solves warm-start from half of the last step's κ (fields dfsphKappa, dfsphKappaV:
 // restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
 // Euler gives v_{n+1} = v*, x_{n+1} = x_n + Δt v*. Wall particles b have mass M_b = ρ0 V_b
@@ -40,6 +39,7 @@
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average; minIterations 2;
 //                           maxIterations 100; maxDivergenceError 0.001; maxDivergenceIterations 100; }
 #include "IterativeSolverControls.hpp"
+#include "Log.hpp"
 #include "Plugin.hpp"
 #include "PressureModel.hpp"
 #include "SphOperators.hpp"
@@ -88,9 +88,14 @@ public:
         if (searchedAt(s)) {
             s.fluid.density().swap(nextDensity_);
             searchedAhead_ = false;
+            ++checksTaken_;
             s.fluidPairGradients = &gradFluid_;
             return;
         }
+        if (searchedAhead_ && ++checksNotTaken_ == 20 && checksTaken_ == 0)
+            log::warning("dfsph: the positions of the step are never those checkPositions checked (x + deltaT v, "
+                         "as symplecticEuler computes them): the check is approximate and costs a neighbour "
+                         "search of its own each step");
         searchedAhead_ = false;
         densityAndFactors(s, s.fluid.position(), s.fluid.density());
     }
@@ -331,10 +336,11 @@ private:
     std::vector<Vec3> nextPositions_;
     std::vector<Scalar> nextDensity_;
     bool searchedAhead_ = false;
+    long checksTaken_ = 0, checksNotTaken_ = 0; // passed checks the next step took over, or not
     // the predicted density less Δt Dρ/Dt: ρ_i + δ_i, or about the positions of a failed check
     // ρ_i(x + Δt v*) − Δt Dρ_i/Dt(v*)
     std::vector<Scalar> baseDensity_;
-    std::vector<Vec3> gradFluid_;    // ∇W of every fluid pair of the step's lists (positions fixed in a step)
+    std::vector<Vec3> gradFluid_;    // ∇W of every fluid pair of the lists the solves linearise about
     std::vector<Vec3> wallGradient_; // Σ_b M_b ∇W_ib of every fluid particle
     SolverStats stats_;
 };
