@@ -25,7 +25,7 @@
 //      passed check costs no more than the step it saves. A failed one linearises again about
 //      the checked positions (their lists and factors; ρ*_i = ρ_i(x + Δt v*) + Δt ΔDρ_i/Dt of
 //      the velocity change since) and the solve goes on until a check meets η. In the
-//      dam-break cube under CFL: 1.08 checks a step, 9 % more time a step than without.
+//      dam-break cube under CFL: 1.08 checks a step, 5 % more time a step than without.
 // The positions the solves linearise about do not change (but at a failed check), so ∇W of every
 // fluid pair is computed once, with the density (computeDensity, after the neighbour search), and
 // the solver passes (and the viscosity, through SphSystem::fluidPairGradients) only stream it;
