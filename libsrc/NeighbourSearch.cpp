@@ -176,6 +176,7 @@ void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::ve
 } // namespace
 
 void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
+    ++builds_;
     fluidGrid_.build(fluid);
     const Periodicity* periodic = periodic_.any() ? &periodic_ : nullptr;
     fluidFluid_.periodic = fluidBoundary_.periodic = periodic;

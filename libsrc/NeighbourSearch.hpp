@@ -317,6 +317,8 @@ public:
     }
     // The relative speeds the ranges were split by (mean 1), for tests and logs.
     const std::vector<double>& threadSpeeds() const { return threadSpeed_; }
+    // How many times build() ran (for tests: a search a step saves shows here).
+    long builds() const { return builds_; }
 
     const NeighbourList& fluidNeighbours() const { return fluidFluid_; }
     const NeighbourList& boundaryNeighbours() const { return fluidBoundary_; }
@@ -339,6 +341,7 @@ private:
     };
     mutable std::vector<ThreadClock> clocks_; // since the last build (recordTime)
     std::vector<double> threadSpeed_;         // relative speed of each thread, mean 1
+    long builds_ = 0;
     static constexpr std::size_t perParticle = 8; // cost of a particle's own work, in pairs
     // Work before particle i: its pairs (fluid and wall, or fluid only) plus perParticle each.
     std::size_t pairWork(std::size_t i, PairWork work) const {
