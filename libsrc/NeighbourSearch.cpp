@@ -53,6 +53,12 @@ std::uint64_t spreadBits(std::uint64_t v) { // 21 bits -> every third bit
 }
 } // namespace
 
+void UniformGrid::relabel(const std::vector<Index>& newIndexOf) {
+    const std::size_t n = sorted_.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < n; ++k) sorted_[k] = newIndexOf[sorted_[k]];
+}
+
 std::uint64_t UniformGrid::mortonCode(const Vec3& p) const {
     int c[3];
     latticeCoords(p, c);
@@ -271,6 +277,44 @@ std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) c
     std::iota(order.begin(), order.end(), Index(0));
     std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return codes[a] < codes[b]; });
     return order;
+}
+
+namespace {
+// Row i of the result is row order[i] of 'list', its indices j mapped to newIndexOf[j] (kept
+// when newIndexOf is null).
+void permuteRows(NeighbourList& list, const std::vector<Index>& order, const std::vector<Index>* newIndexOf,
+                 std::vector<Index>& scratch) {
+    const std::size_t n = order.size();
+    std::vector<std::uint32_t> offsets(n + 1);
+    offsets[0] = 0;
+    for (std::size_t i = 0; i < n; ++i) offsets[i + 1] = offsets[i] + list.count(order[i]);
+    scratch.resize(list.indices.size());
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        Index* out = scratch.data() + offsets[i];
+        for (const Index* j = list.begin(order[i]); j != list.end(order[i]); ++j)
+            *out++ = newIndexOf ? (*newIndexOf)[*j] : *j;
+    }
+    list.offsets.swap(offsets);
+    list.indices.swap(scratch);
+}
+} // namespace
+
+void NeighbourSearch::permute(const std::vector<Index>& order) {
+    const std::size_t n = order.size();
+    if (n != fluidFluid_.size()) throw std::logic_error("NeighbourSearch::permute: not the last build's points");
+    std::vector<Index> newIndexOf(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) newIndexOf[order[i]] = Index(i);
+    std::vector<Index> scratch;
+    permuteRows(fluidFluid_, order, &newIndexOf, scratch);
+    permuteRows(fluidBoundary_, order, nullptr, scratch);
+    fluidGrid_.relabel(newIndexOf);
+    int threads = 1;
+#ifdef _OPENMP
+    threads = omp_get_max_threads();
+#endif
+    balanceWork(threads);
 }
 
 NeighbourList NeighbourSearch::boundaryBoundaryList() const {

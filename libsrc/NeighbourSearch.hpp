@@ -76,6 +76,9 @@ public:
     void setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax,
                const Periodicity& periodic = {});
     void build(const std::vector<Vec3>& points);
+    // The built points were renumbered, point k now newIndexOf[k], in an order that keeps the
+    // points of each cell in their index order: the grid is then that of a build on them.
+    void relabel(const std::vector<Index>& newIndexOf);
 
     // Calls f(j) for every point j of the built set with |p − x_j| < radius (radius <= cell size).
     template <class F>
@@ -278,8 +281,14 @@ public:
     // Rebuilds fluid–fluid and fluid–boundary lists for the current fluid positions.
     void build(const std::vector<Vec3>& fluidPoints);
 
-    // Permutation that orders points along the Z-order curve of the grid cells.
+    // Permutation that orders points along the Z-order curve of the grid cells (stable: the
+    // points of a cell keep their order).
     std::vector<Index> sortOrder(const std::vector<Vec3>& points) const;
+    // The fluid points of the last build were reordered, new i = old order[i], by a
+    // permutation that keeps the points of a cell in their order (sortOrder's): relabels the
+    // lists and the grid, which are then those a build on the reordered points gives, pair for
+    // pair and in the same order, for less than a build costs.
+    void permute(const std::vector<Index>& order);
 
     // Boundary–boundary list (each boundary point's boundary neighbours, self excluded),
     // computed on demand, e.g. for boundary volumes at set-up.

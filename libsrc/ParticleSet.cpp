@@ -63,19 +63,12 @@ bool ParticleSet::hasField(const std::string& name) const {
 }
 
 namespace {
-// Both run every step (the last-good-state snapshot) or every few (the re-sort): in parallel.
+// Runs every step (the last-good-state snapshot): in parallel.
 template <class T> void parallelCopy(std::vector<T>& to, const std::vector<T>& from) {
     to.resize(from.size());
     const std::size_t n = from.size();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
-}
-template <class T> void permuteVector(std::vector<T>& v, const std::vector<Index>& order) {
-    std::vector<T> out(order.size());
-    const std::size_t n = order.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) out[i] = v[order[i]];
-    v.swap(out);
 }
 } // namespace
 

@@ -16,6 +16,15 @@
 
 namespace spindrift {
 
+// Reorders v as particles are re-sorted: element i becomes v[order[i]] (in parallel).
+template <class T> void permuteVector(std::vector<T>& v, const std::vector<Index>& order) {
+    std::vector<T> out(order.size());
+    const std::size_t n = order.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) out[i] = v[order[i]];
+    v.swap(out);
+}
+
 struct FieldOptions {
     bool output = true;   // written to fluid.vtp / boundary.vtp
     bool restart = false; // needed to restart (written even when not selected for output)

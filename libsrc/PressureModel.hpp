@@ -22,6 +22,10 @@ public:
     // the current fluid positions, so the next evaluation need not search (dfsph's
     // checkPositions searches at the positions its step leads to).
     virtual bool searchedAt(const SphSystem&) const { return false; }
+    // The particles are about to be re-sorted (new i = old order[i]) while searchedAt() holds:
+    // the model reorders what it keeps for the next evaluation (the neighbour lists are still
+    // in the old order here; they are relabelled after the fluid).
+    virtual void permute(const SphSystem&, const std::vector<Index>& /*order*/) {}
     // Numerical sound speed for the CFL limit; 0 for incompressible solvers.
     virtual Scalar soundSpeed() const { return 0; }
     virtual SolverStats lastSolve() const { return {}; }

@@ -456,7 +456,14 @@ RunSummary Simulation::run() {
     double dtCap = std::numeric_limits<double>::infinity();
     log::info("\nStarting time loop\n");
     while (!time_->finished(s.time)) {
-        if (sortEvery_ > 0 && s.step % sortEvery_ == 0) s.fluid.permute(s.search.sortOrder(s.fluid.position()));
+        if (sortEvery_ > 0 && s.step % sortEvery_ == 0) {
+            const std::vector<Index> order = s.search.sortOrder(s.fluid.position());
+            // a search the pressure model made at these positions is kept, relabelled
+            const bool keepSearch = pressure_->searchedAt(s);
+            if (keepSearch) pressure_->permute(s, order);
+            s.fluid.permute(order);
+            if (keepSearch) s.search.permute(order);
+        }
         const double dt = std::min(time_->nextDeltaT(s.time, stableDeltaT()), dtCap);
         if (!keepPrevious) std::swap(previous, last);
         keepPrevious = false;
