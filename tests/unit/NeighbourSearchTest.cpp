@@ -103,7 +103,8 @@ TEST_P(NeighbourSearchTest, SortOrderIsAPermutationAlongTheCurve) {
 
 // Relabelling the lists after a re-sort (permute) gives what a build on the re-sorted points
 // gives, pair for pair and in the same order: the sort keeps the points of a cell in their
-// order. Points on a lattice (many in one cell in a row) and random ones, some outside the domain.
+// order. Points on a lattice (many in one cell in a row) and random ones, some outside the domain;
+// with and without a periodic axis.
 TEST_P(NeighbourSearchTest, PermutedListsEqualABuildOnTheReorderedPoints) {
     const int dim = GetParam();
     const Scalar h = 0.07;
@@ -112,29 +113,35 @@ TEST_P(NeighbourSearchTest, PermutedListsEqualABuildOnTheReorderedPoints) {
     std::shuffle(fluid.begin(), fluid.end(), std::mt19937(8));
     const auto wall = randomPoints(1000, dim, 1.0, 9);
     const Vec3 hi(1, 1, dim == 3 ? 1 : 0);
-    NeighbourSearch relabelled, fresh;
-    for (auto* s : {&relabelled, &fresh}) {
-        s->setup(h, dim, Vec3::Zero(), hi);
-        s->setBoundary(wall);
-    }
-    relabelled.build(fluid);
-    const auto order = relabelled.sortOrder(fluid);
-    std::vector<Vec3> sorted(fluid.size());
-    for (std::size_t i = 0; i < fluid.size(); ++i) sorted[i] = fluid[order[i]];
-    relabelled.permute(order);
-    fresh.build(sorted);
-    EXPECT_EQ(relabelled.fluidNeighbours().offsets, fresh.fluidNeighbours().offsets);
-    EXPECT_EQ(relabelled.fluidNeighbours().indices, fresh.fluidNeighbours().indices);
-    EXPECT_EQ(relabelled.boundaryNeighbours().offsets, fresh.boundaryNeighbours().offsets);
-    EXPECT_EQ(relabelled.boundaryNeighbours().indices, fresh.boundaryNeighbours().indices);
-    EXPECT_GT(fresh.fluidNeighbours().totalPairs(), 5 * fluid.size()); // not vacuous
-    // the grid too: the same points in the same order around any place
-    for (const Vec3& p : {Vec3(0.31, 0.33, dim == 3 ? 0.5 : 0), Vec3(0.5, 0.5, dim == 3 ? 0.5 : 0)}) {
-        std::vector<Index> a, b;
-        relabelled.fluidGrid().forEachWithin(p, sorted, h, [&](Index j) { a.push_back(j); });
-        fresh.fluidGrid().forEachWithin(p, sorted, h, [&](Index j) { b.push_back(j); });
-        EXPECT_FALSE(a.empty());
-        EXPECT_EQ(a, b);
+    for (bool periodicX : {false, true}) {
+        Periodicity periodic;
+        periodic.axis[0] = periodicX;
+        periodic.length = Vec3(1, 0, 0);
+        for (auto& x : fluid) periodic.wrap(x);
+        NeighbourSearch relabelled, fresh;
+        for (auto* s : {&relabelled, &fresh}) {
+            s->setup(h, dim, Vec3::Zero(), hi, periodic);
+            s->setBoundary(wall);
+        }
+        relabelled.build(fluid);
+        const auto order = relabelled.sortOrder(fluid);
+        std::vector<Vec3> sorted(fluid.size());
+        for (std::size_t i = 0; i < fluid.size(); ++i) sorted[i] = fluid[order[i]];
+        relabelled.permute(order);
+        fresh.build(sorted);
+        EXPECT_EQ(relabelled.fluidNeighbours().offsets, fresh.fluidNeighbours().offsets);
+        EXPECT_EQ(relabelled.fluidNeighbours().indices, fresh.fluidNeighbours().indices);
+        EXPECT_EQ(relabelled.boundaryNeighbours().offsets, fresh.boundaryNeighbours().offsets);
+        EXPECT_EQ(relabelled.boundaryNeighbours().indices, fresh.boundaryNeighbours().indices);
+        EXPECT_GT(fresh.fluidNeighbours().totalPairs(), 5 * fluid.size()); // not vacuous
+        // the grid too: the same points in the same order around any place
+        for (const Vec3& p : {Vec3(0.31, 0.33, dim == 3 ? 0.5 : 0), Vec3(0.5, 0.5, dim == 3 ? 0.5 : 0)}) {
+            std::vector<Index> a, b;
+            relabelled.fluidGrid().forEachWithin(p, sorted, h, [&](Index j) { a.push_back(j); });
+            fresh.fluidGrid().forEachWithin(p, sorted, h, [&](Index j) { b.push_back(j); });
+            EXPECT_FALSE(a.empty());
+            EXPECT_EQ(a, b);
+        }
     }
 }
 
