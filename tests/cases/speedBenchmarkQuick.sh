@@ -2,7 +2,8 @@
 # The speed benchmark of issue 7 (tutorials/benchmarks/Allrun) on a few steps: every method
 # runs on 1 and 2 threads and prints a complete row; the incompressible solvers do at least the
 # 3 iterations of the reference; a run gives the same max density error on 1 and 2 threads
-# (results do not depend on the thread count). Times are printed, never asserted.
+# (results do not depend on the thread count); -compare prints a row for each build and their
+# ratio. Times are printed, never asserted.
 #   speedBenchmarkQuick.sh <bin dir>
 set -euo pipefail
 export SPINDRIFT_BIN=$1
@@ -23,4 +24,9 @@ for method in wcsph pcisph pbf relaxedPbf dfsph; do
         END { if (err[1] != err[2]) { print "FAIL: " m ": max density error differs with the thread count: " err[1] " vs " err[2]; bad = 1 }
               exit bad }' <<< "$rows" || exit 1
 done
+# paired rounds against another build (here the same one): a row each and the ratio
+out=$("$here/../../tutorials/benchmarks/Allrun" -methods wcsph -threads 1 -endTime 0.004 -repeat 2 -compare "$SPINDRIFT_BIN")
+echo "$out"
+[ "$(awk '$1 == "wcsph" || $1 == "wcsph*"' <<< "$out" | wc -l)" -eq 2 ] || fail "-compare: expected a row for each build"
+grep -qE "this build / the other \(\*\): [0-9.]+ \(means of 2 paired rounds\)" <<< "$out" || fail "-compare: no ratio"
 echo "speed benchmark quick: OK"
