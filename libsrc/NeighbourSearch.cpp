@@ -279,26 +279,12 @@ std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) c
     return order;
 }
 
-namespace {
-// Row i of the result is row order[i] of 'list', its indices j mapped to newIndexOf[j] (kept
-// when newIndexOf is null).
-void permuteRows(NeighbourList& list, const std::vector<Index>& order, const std::vector<Index>* newIndexOf,
-                 std::vector<Index>& scratch) {
-    const std::size_t n = order.size();
-    std::vector<std::uint32_t> offsets(n + 1);
+std::vector<std::uint32_t> permutedOffsets(const NeighbourList& list, const std::vector<Index>& order) {
+    std::vector<std::uint32_t> offsets(order.size() + 1);
     offsets[0] = 0;
-    for (std::size_t i = 0; i < n; ++i) offsets[i + 1] = offsets[i] + list.count(order[i]);
-    scratch.resize(list.indices.size());
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-        Index* out = scratch.data() + offsets[i];
-        for (const Index* j = list.begin(order[i]); j != list.end(order[i]); ++j)
-            *out++ = newIndexOf ? (*newIndexOf)[*j] : *j;
-    }
-    list.offsets.swap(offsets);
-    list.indices.swap(scratch);
+    for (std::size_t i = 0; i < order.size(); ++i) offsets[i + 1] = offsets[i] + list.count(order[i]);
+    return offsets;
 }
-} // namespace
 
 void NeighbourSearch::permute(const std::vector<Index>& order) {
     const std::size_t n = order.size();
@@ -307,8 +293,14 @@ void NeighbourSearch::permute(const std::vector<Index>& order) {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) newIndexOf[order[i]] = Index(i);
     std::vector<Index> scratch;
-    permuteRows(fluidFluid_, order, &newIndexOf, scratch);
-    permuteRows(fluidBoundary_, order, nullptr, scratch);
+    const auto permuteRows = [&](NeighbourList& list, auto map) {
+        std::vector<std::uint32_t> offsets = permutedOffsets(list, order);
+        permuteRowData(list, order, offsets, list.indices, scratch, map);
+        list.offsets.swap(offsets);
+        list.indices.swap(scratch);
+    };
+    permuteRows(fluidFluid_, [&](Index j) { return newIndexOf[j]; });
+    permuteRows(fluidBoundary_, std::identity{}); // wall particles keep their numbers
     fluidGrid_.relabel(newIndexOf);
     int threads = 1;
 #ifdef _OPENMP

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -69,6 +70,23 @@ struct NeighbourList {
     const Index* end(std::size_t i) const { return indices.data() + offsets[i + 1]; }
     std::size_t totalPairs() const { return indices.size(); }
 };
+
+// Re-sorting the particles (new i = old order[i]) moves whole rows of a list: the offsets of
+// the rows in the new order, and per-pair data (an entry per pair of 'list', in list order)
+// copied into that order, each entry through map (the neighbour indices are renumbered so).
+std::vector<std::uint32_t> permutedOffsets(const NeighbourList& list, const std::vector<Index>& order);
+template <class T, class Map = std::identity>
+void permuteRowData(const NeighbourList& list, const std::vector<Index>& order,
+                    const std::vector<std::uint32_t>& newOffsets, const std::vector<T>& from, std::vector<T>& to,
+                    Map map = {}) {
+    to.resize(from.size());
+    const std::size_t n = order.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        T* out = to.data() + newOffsets[i];
+        for (std::uint32_t k = list.offsets[order[i]]; k < list.offsets[order[i] + 1]; ++k) *out++ = map(from[k]);
+    }
+}
 
 class UniformGrid {
 public:

@@ -114,15 +114,8 @@ public:
     // the old lists taken in that order (the relabelled lists keep each row's pair order).
     void permute(const SphSystem& s, const std::vector<Index>& order) override {
         const auto& ff = s.search.fluidNeighbours(); // still in the old order
-        const std::size_t n = order.size();
-        std::vector<std::uint32_t> start(n + 1);
-        start[0] = 0;
-        for (std::size_t i = 0; i < n; ++i) start[i + 1] = start[i] + ff.count(order[i]);
-        std::vector<Vec3> gradients(gradFluid_.size());
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i)
-            std::copy(gradFluid_.begin() + ff.offsets[order[i]], gradFluid_.begin() + ff.offsets[order[i] + 1],
-                      gradients.begin() + start[i]);
+        std::vector<Vec3> gradients;
+        permuteRowData(ff, order, permutedOffsets(ff, order), gradFluid_, gradients);
         gradFluid_.swap(gradients);
         permuteVector(nextPositions_, order);
         permuteVector(nextDensity_, order);
