@@ -126,135 +126,154 @@ void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
     boundaryGrid_.build(boundaryPoints_);
 }
 
-namespace {
-// Fills 'list' for n query points with gather(i, reserve) → count, which writes point i's
-// neighbours to the array reserve(room) gives it. Each thread handles a contiguous block of
-// points; the first writes straight into list.indices, where its block goes, the others into
-// their own buffers (kept in 'buffers' between calls), copied after it in order, so the lists
-// do not depend on the thread count.
-template <class Gather>
-void gatherNeighbourList(std::size_t n, NeighbourList& list, std::vector<std::vector<Index>>& buffers,
-                         const NeighbourSearch& search, Gather&& gather) {
-    list.offsets.resize(n + 1);
-    list.offsets[0] = 0;
+// Fills the fluid–fluid list, and the fluid–wall one when 'walls', for n fluid points in one
+// parallel region: gather(list, i, reserve) → count writes point i's neighbours in list 0
+// (fluid) or 1 (walls) to the array reserve(room) gives it. Each thread takes a contiguous
+// block of points (searchRange); the first writes straight into the lists, where its block
+// goes, the others into their own buffers (kept between calls), copied after it in order, so
+// the lists do not depend on the thread count or the split. The region's times per thread
+// update the split of the next build.
+template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool walls, Gather&& gather) {
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
 #endif
-    if (int(buffers.size()) < threads) buffers.resize(threads);
-    std::vector<std::size_t> used(threads, 0), first(threads, 0);
-#pragma omp parallel num_threads(threads)
-    {
-        int t = 0;
-#ifdef _OPENMP
-        t = omp_get_thread_num();
-#endif
-        const auto [begin, end] = search.workRange(t, threads);
-        first[t] = begin;
-        std::vector<Index>& buffer = t == 0 ? list.indices : buffers[t];
-        std::size_t size = 0;
-        auto reserve = [&](std::size_t room) {
-            if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
-            return buffer.data() + size;
-        };
-        for (std::size_t i = begin; i < end; ++i) {
-            const std::size_t count = gather(i, reserve);
-            size += count;
-            list.offsets[i + 1] = std::uint32_t(count);
-        }
-        used[t] = size;
+    NeighbourList* lists[2] = {&fluidFluid_, &fluidBoundary_};
+    const int listCount = walls ? 2 : 1;
+    // the ranges and the work they carry, from the last lists (before they are overwritten)
+    const bool timed = threads > 1 && threads == int(searchRanges_.size()) - 1 && searchRanges_.back() == n &&
+                       fluidFluid_.size() == n && fluidBoundary_.size() == n;
+    std::vector<std::size_t> first(threads + 1);
+    for (int t = 0; t <= threads; ++t) first[t] = timed ? searchRanges_[t] : n * t / threads;
+    if (timed) {
+        if (int(searchSpeeds_.clocks.size()) != threads) searchSpeeds_.clocks.assign(threads, ThreadClock{});
+        for (int t = 0; t < threads; ++t)
+            searchSpeeds_.clocks[t].work += double(pairWork(first[t + 1], PairWork::FluidAndWall) -
+                                                   pairWork(first[t], PairWork::FluidAndWall));
     }
-    for (std::size_t i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
-    list.indices.resize(list.offsets[n]);
-    // every thread copies a slice of every other thread's buffer
+    for (int k = 0; k < listCount; ++k) {
+        lists[k]->offsets.resize(n + 1);
+        lists[k]->offsets[0] = 0;
+    }
+    if (int(threadBuffers_.size()) < 2 * threads) threadBuffers_.resize(2 * threads);
+    std::vector<std::size_t> used(2 * threads, 0);
+#pragma omp parallel num_threads(threads)
+    {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+        const double start = omp_get_wtime();
+#endif
+        for (int k = 0; k < listCount; ++k) {
+            NeighbourList& list = *lists[k];
+            std::vector<Index>& buffer = t == 0 ? list.indices : threadBuffers_[2 * t + k];
+            std::size_t size = 0;
+            auto reserve = [&](std::size_t room) {
+                if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
+                return buffer.data() + size;
+            };
+            for (std::size_t i = first[t]; i < first[t + 1]; ++i) {
+                const std::size_t count = gather(k, i, reserve);
+                size += count;
+                list.offsets[i + 1] = std::uint32_t(count);
+            }
+            used[2 * t + k] = size;
+        }
+#ifdef _OPENMP
+        if (timed) searchSpeeds_.clocks[t].seconds += omp_get_wtime() - start;
+#endif
+    }
+    for (int k = 0; k < listCount; ++k) {
+        NeighbourList& list = *lists[k];
+        for (std::size_t i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
+        list.indices.resize(list.offsets[n]);
+    }
+    // every thread copies a slice of every other thread's buffers
 #pragma omp parallel num_threads(threads)
     {
         int t = 0;
 #ifdef _OPENMP
         t = omp_get_thread_num();
 #endif
-        for (int u = 1; u < threads; ++u) {
-            const std::size_t lo = used[u] * t / threads, hi = used[u] * (t + 1) / threads;
-            std::copy(buffers[u].begin() + lo, buffers[u].begin() + hi, list.indices.begin() + list.offsets[first[u]] + lo);
-        }
+        for (int k = 0; k < listCount; ++k)
+            for (int u = 1; u < threads; ++u) {
+                const std::vector<Index>& buffer = threadBuffers_[2 * u + k];
+                const std::size_t size = used[2 * u + k], lo = size * t / threads, hi = size * (t + 1) / threads;
+                std::copy(buffer.begin() + lo, buffer.begin() + hi, lists[k]->indices.begin() + lists[k]->offsets[first[u]] + lo);
+            }
     }
 }
-} // namespace
 
 void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
     ++builds_;
     fluidGrid_.build(fluid);
     const Periodicity* periodic = periodic_.any() ? &periodic_ : nullptr;
     fluidFluid_.periodic = fluidBoundary_.periodic = periodic;
-    const Scalar r2 = radius_ * radius_;
+    const bool walls = !boundaryPoints_.empty();
     if (periodic) {
         buildNeighbourList(fluid.size(), fluidFluid_, [&](std::size_t i, auto&& push) {
             fluidGrid_.forEachWithin(fluid[i], fluid, radius_, [&](Index j) {
                 if (j != i) push(j);
             });
         });
+        if (walls)
+            buildNeighbourList(fluid.size(), fluidBoundary_, [&](std::size_t i, auto&& push) {
+                boundaryGrid_.forEachWithin(fluid[i], boundaryPoints_, radius_, push);
+            });
     } else {
-        gatherNeighbourList(fluid.size(), fluidFluid_, threadBuffers_, *this, [&](std::size_t i, auto&& reserve) {
-            return fluidGrid_.gatherWithin(fluid[i], r2, Index(i), reserve);
+        const Scalar r2 = radius_ * radius_;
+        constexpr Index none = std::numeric_limits<Index>::max();
+        gatherLists(fluid.size(), walls, [&](int list, std::size_t i, auto&& reserve) {
+            return list == 0 ? fluidGrid_.gatherWithin(fluid[i], r2, Index(i), reserve)
+                             : boundaryGrid_.gatherWithin(fluid[i], r2, none, reserve);
         });
+    }
+    if (!walls) {
+        fluidBoundary_.offsets.assign(fluid.size() + 1, 0);
+        fluidBoundary_.indices.clear();
     }
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
 #endif
-    if (boundaryPoints_.empty()) {
-        fluidBoundary_.offsets.assign(fluid.size() + 1, 0);
-        fluidBoundary_.indices.clear();
-        balanceWork(threads);
-        return;
-    }
-    if (periodic) {
-        buildNeighbourList(fluid.size(), fluidBoundary_, [&](std::size_t i, auto&& push) {
-            boundaryGrid_.forEachWithin(fluid[i], boundaryPoints_, radius_, push);
-        });
-    } else {
-        constexpr Index none = std::numeric_limits<Index>::max();
-        gatherNeighbourList(fluid.size(), fluidBoundary_, threadBuffers_, *this, [&](std::size_t i, auto&& reserve) {
-            return boundaryGrid_.gatherWithin(fluid[i], r2, none, reserve);
-        });
-    }
     balanceWork(threads);
 }
 
-void NeighbourSearch::updateThreadSpeeds(int threads) {
-    if (int(threadSpeed_.size()) != threads) threadSpeed_.assign(threads, 1.0);
-    if (int(clocks_.size()) == threads) {
+void NeighbourSearch::ThreadSpeeds::update(int threads) {
+    if (int(speed.size()) != threads) speed.assign(threads, 1.0);
+    if (int(clocks.size()) == threads) {
         // each thread's work per second since the last build, relative to the mean, averaged
         // over the last steps (weight 1/4 for the newest): one noisy step moves it little
-        const auto rate = [&](int t) { return clocks_[t].work / clocks_[t].seconds; };
+        const auto rate = [&](int t) { return clocks[t].work / clocks[t].seconds; };
         double mean = 0;
         for (int t = 0; t < threads; ++t)
-            mean += clocks_[t].seconds > 0 && clocks_[t].work > 0 ? rate(t) / threads : NAN;
+            mean += clocks[t].seconds > 0 && clocks[t].work > 0 ? rate(t) / threads : NAN;
         if (mean > 0) { // every thread measured
             double sum = 0;
             for (int t = 0; t < threads; ++t) {
-                threadSpeed_[t] = 0.75 * threadSpeed_[t] + 0.25 * std::clamp(rate(t) / mean, 0.25, 4.0);
-                sum += threadSpeed_[t];
+                speed[t] = 0.75 * speed[t] + 0.25 * std::clamp(rate(t) / mean, 0.25, 4.0);
+                sum += speed[t];
             }
-            for (double& speed : threadSpeed_) speed *= threads / sum;
+            for (double& s : speed) s *= threads / sum;
         }
     }
-    clocks_.assign(threads, ThreadClock{});
+    clocks.assign(threads, ThreadClock{});
 }
 
 void NeighbourSearch::balanceWork(int threads) {
     // thread t starts where the work (pairWork) reaches the share of the threads before it,
     // each thread's share in proportion to its speed
-    updateThreadSpeeds(threads);
+    passSpeeds_.update(threads);
+    searchSpeeds_.update(threads);
     const std::size_t n = fluidFluid_.size();
-    const auto balance = [&](std::vector<std::size_t>& ranges, PairWork kind) {
+    const auto balance = [&](std::vector<std::size_t>& ranges, PairWork kind, const std::vector<double>& speed) {
         ranges.assign(threads + 1, n);
         ranges[0] = 0;
         const double total = double(pairWork(n, kind));
         double before = 0;
         std::size_t lo = 0;
         for (int t = 1; t < threads; ++t) {
-            before += threadSpeed_[t - 1];
+            before += speed[t - 1];
             const double target = total * before / threads;
             std::size_t a = lo, b = n; // first i with pairWork(i) >= target
             while (a < b) {
@@ -265,8 +284,9 @@ void NeighbourSearch::balanceWork(int threads) {
             ranges[t] = lo = a;
         }
     };
-    balance(workRanges_, PairWork::FluidAndWall);
-    balance(fluidWorkRanges_, PairWork::Fluid);
+    balance(workRanges_, PairWork::FluidAndWall, passSpeeds_.speed);
+    balance(fluidWorkRanges_, PairWork::Fluid, passSpeeds_.speed);
+    balance(searchRanges_, PairWork::FluidAndWall, searchSpeeds_.speed);
 }
 
 std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) const {

@@ -13,8 +13,8 @@
 //
 // Lists are compact (CSR): for particle i, indices[offsets[i] .. offsets[i+1]) excluding i.
 // The grid keeps its points in cell order as a structure of arrays, so the per-step list
-// build scans contiguous memory without branches (gatherWithin); each thread fills its own
-// persistent buffer for a contiguous block of particles.
+// build scans contiguous memory without branches (gatherWithin); in one parallel region each
+// thread fills its own persistent buffers, fluid and wall, for a contiguous block of particles.
 // Fluid–fluid and fluid–boundary lists are rebuilt each step; the static boundary grid is
 // built once and boundary–boundary pairs are never searched during the run.
 // sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
@@ -325,10 +325,7 @@ public:
     // changes a result, so the results stay independent of the split.
     enum class PairWork { FluidAndWall, Fluid };
     std::pair<std::size_t, std::size_t> workRange(int t, int threads, PairWork work = PairWork::FluidAndWall) const {
-        const std::size_t n = fluidFluid_.size();
-        const auto& ranges = work == PairWork::Fluid ? fluidWorkRanges_ : workRanges_;
-        if (threads == int(ranges.size()) - 1 && ranges.back() == n) return {ranges[t], ranges[t + 1]};
-        return {n * t / threads, n * (t + 1) / threads};
+        return rangeOf(work == PairWork::Fluid ? fluidWorkRanges_ : workRanges_, t, threads);
     }
 
     // The thread count the ranges were balanced for (the last build's).
@@ -338,12 +335,19 @@ public:
     // thread writes only its own slot; ignored when the thread count is not the build's.
     void recordTime(int t, int threads, PairWork work, std::size_t first, std::size_t last, double seconds) const {
         if (threads != workRangeThreads() || threads < 2) return;
-        ThreadClock& c = clocks_[t];
+        ThreadClock& c = passSpeeds_.clocks[t];
         c.work += double(pairWork(last, work) - pairWork(first, work));
         c.seconds += seconds;
     }
     // The relative speeds the ranges were split by (mean 1), for tests and logs.
-    const std::vector<double>& threadSpeeds() const { return threadSpeed_; }
+    const std::vector<double>& threadSpeeds() const { return passSpeeds_.speed; }
+    // The same for the list build's own split (searchRange): the search's cost per pair of the
+    // last lists differs from the passes' (it scans cells, so particles with few neighbours
+    // cost more per pair), and its split learns that from its own times.
+    const std::vector<double>& searchThreadSpeeds() const { return searchSpeeds_.speed; }
+    std::pair<std::size_t, std::size_t> searchRange(int t, int threads) const {
+        return rangeOf(searchRanges_, t, threads);
+    }
     // How many times build() ran (for tests: a search a step saves shows here).
     long builds() const { return builds_; }
 
@@ -361,13 +365,20 @@ private:
     UniformGrid fluidGrid_, boundaryGrid_;
     std::vector<Vec3> boundaryPoints_;
     NeighbourList fluidFluid_, fluidBoundary_;
-    std::vector<std::vector<Index>> threadBuffers_; // kept between steps: no allocation per step
-    std::vector<std::size_t> workRanges_, fluidWorkRanges_; // threads + 1 bounds (workRange)
+    // kept between steps, no allocation per step: [2 t] thread t's fluid neighbours, [2 t + 1] its wall ones
+    std::vector<std::vector<Index>> threadBuffers_;
+    // threads + 1 bounds: the passes' (workRange) and the list build's (searchRange)
+    std::vector<std::size_t> workRanges_, fluidWorkRanges_, searchRanges_;
     struct alignas(64) ThreadClock { // one cache line each: the threads write them concurrently
         double work = 0, seconds = 0;
     };
-    mutable std::vector<ThreadClock> clocks_; // since the last build (recordTime)
-    std::vector<double> threadSpeed_;         // relative speed of each thread, mean 1
+    struct ThreadSpeeds {               // of one kind of region
+        std::vector<ThreadClock> clocks; // since the last build
+        std::vector<double> speed;       // relative speed of each thread, mean 1
+        void update(int threads);        // from the clocks, which it then resets
+    };
+    mutable ThreadSpeeds passSpeeds_; // the balanced passes' (recordTime)
+    ThreadSpeeds searchSpeeds_;       // the list build's
     long builds_ = 0;
     static constexpr std::size_t perParticle = 8; // cost of a particle's own work, in pairs
     // Work before particle i: its pairs (fluid and wall, or fluid only) plus perParticle each.
@@ -375,8 +386,13 @@ private:
         return std::size_t(fluidFluid_.offsets[i]) + (work == PairWork::FluidAndWall ? fluidBoundary_.offsets[i] : 0) +
                perParticle * i;
     }
-    void updateThreadSpeeds(int threads);
+    std::pair<std::size_t, std::size_t> rangeOf(const std::vector<std::size_t>& ranges, int t, int threads) const {
+        const std::size_t n = fluidFluid_.size();
+        if (threads == int(ranges.size()) - 1 && ranges.back() == n) return {ranges[t], ranges[t + 1]};
+        return {n * t / threads, n * (t + 1) / threads};
+    }
     void balanceWork(int threads);
+    template <class Gather> void gatherLists(std::size_t n, bool walls, Gather&& gather);
 };
 
 // Calls f(i) for every fluid particle i in parallel, each thread over its workRange: for pair

@@ -62,22 +62,46 @@ TEST_P(NeighbourSearchTest, MatchesBruteForce) {
     }
 }
 
-TEST_P(NeighbourSearchTest, ListsIndependentOfThreadCount) {
+// The fluid and wall lists are the same for any thread count and any split of the particles
+// between the threads: the build's split follows its own measured times from the second build
+// at a thread count on, so repeated builds run on different splits.
+TEST_P(NeighbourSearchTest, ListsIndependentOfThreadCountAndSplit) {
 #ifdef _OPENMP
     const int dim = GetParam();
     const auto pts = randomPoints(5000, dim, 1.0, 3);
     NeighbourSearch search;
     search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, dim == 3 ? 1 : 0));
+    search.setBoundary(randomPoints(1000, dim, 1.0, 4));
     const int saved = omp_get_max_threads();
     omp_set_num_threads(1);
     search.build(pts);
-    const NeighbourList one = search.fluidNeighbours();
-    omp_set_num_threads(3);
-    search.build(pts);
-    const NeighbourList three = search.fluidNeighbours();
+    const NeighbourList fluidOne = search.fluidNeighbours(), wallOne = search.boundaryNeighbours();
+    ASSERT_GT(wallOne.totalPairs(), pts.size() / 10); // not vacuous
+    for (int threads : {2, 3}) {
+        omp_set_num_threads(threads);
+        for (int build = 0; build < 6; ++build) {
+            search.build(pts);
+            EXPECT_EQ(fluidOne.offsets, search.fluidNeighbours().offsets) << threads << " threads, build " << build;
+            EXPECT_EQ(fluidOne.indices, search.fluidNeighbours().indices) << threads << " threads, build " << build;
+            EXPECT_EQ(wallOne.offsets, search.boundaryNeighbours().offsets) << threads << " threads, build " << build;
+            EXPECT_EQ(wallOne.indices, search.boundaryNeighbours().indices) << threads << " threads, build " << build;
+        }
+        // the split the next build takes: contiguous ranges tiling the particles, by speeds of mean 1
+        std::size_t next = 0;
+        for (int t = 0; t < threads; ++t) {
+            const auto [first, last] = search.searchRange(t, threads);
+            EXPECT_EQ(first, next);
+            EXPECT_LE(first, last);
+            next = last;
+        }
+        EXPECT_EQ(next, pts.size());
+        const auto& speeds = search.searchThreadSpeeds();
+        ASSERT_EQ(int(speeds.size()), threads);
+        double sum = 0;
+        for (double v : speeds) sum += v;
+        EXPECT_NEAR(sum, threads, 1e-9);
+    }
     omp_set_num_threads(saved);
-    EXPECT_EQ(one.offsets, three.offsets);
-    EXPECT_EQ(one.indices, three.indices);
 #else
     GTEST_SKIP() << "built without OpenMP";
 #endif
