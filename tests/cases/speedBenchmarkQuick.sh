@@ -3,7 +3,8 @@
 # runs on 1 and 2 threads and prints a complete row; the incompressible solvers do at least the
 # 3 iterations of the reference; a run gives the same max density error on 1 and 2 threads
 # (results do not depend on the thread count); -compare prints a row for each build and their
-# ratio. Times are printed, never asserted.
+# ratio; -scaling a row per method with its speed-up against spindriftParallelCeiling's. Times
+# are printed, never asserted.
 #   speedBenchmarkQuick.sh <bin dir>
 set -euo pipefail
 export SPINDRIFT_BIN=$1
@@ -29,4 +30,11 @@ out=$("$here/../../tutorials/benchmarks/Allrun" -methods wcsph -threads 1 -endTi
 echo "$out"
 [ "$(awk '$1 == "wcsph" || $1 == "wcsph*"' <<< "$out" | wc -l)" -eq 2 ] || fail "-compare: expected a row for each build"
 grep -qE "this build / the other \(\*\): [0-9.]+ \(means of 2 paired rounds\)" <<< "$out" || fail "-compare: no ratio"
+# -scaling: a row per method with both thread counts' times, the ratios, the ceiling's and the efficiency
+out=$("$here/../../tutorials/benchmarks/Allrun" -scaling -methods wcsph -endTime 0.004 -repeat 2)
+echo "$out"
+awk '$1 == "wcsph" { found = 1
+        if ($2 != 2 || !($3 > 0) || !($4 > 0) || !($8 > 0)) { print "FAIL: -scaling row: " $0; exit 1 }
+        for (i = 5; i <= 7; ++i) if ($i !~ /^[0-9.]+x$/) { print "FAIL: -scaling ratio: " $i; exit 1 } }
+     END { if (!found) { print "FAIL: -scaling printed no row"; exit 1 } }' <<< "$out" || exit 1
 echo "speed benchmark quick: OK"
