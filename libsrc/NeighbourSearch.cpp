@@ -130,9 +130,11 @@ void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
 // parallel region: gather(list, i, reserve) → count writes point i's neighbours in list 0
 // (fluid) or 1 (walls) to the array reserve(room) gives it. Each thread takes a contiguous
 // block of points (searchRange); the first writes straight into the lists, where its block
-// goes, the others into their own buffers (kept between calls), copied after it in order, so
-// the lists do not depend on the thread count or the split. The region's times per thread
-// update the split of the next build.
+// goes, the others into their own buffers (kept between calls), which each copies after the
+// blocks before it, so the lists do not depend on the thread count or the split. A thread's
+// time (gather and copy) updates the split of the next build: the copy's cost moves work to
+// the first thread. (When the first thread copied half of another's rows, a quarter of the
+// lists sat in the wrong core's cache for every pass of the step.)
 template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool walls, Gather&& gather) {
     int threads = 1;
 #ifdef _OPENMP
@@ -160,10 +162,12 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
 #pragma omp parallel num_threads(threads)
     {
         int t = 0;
+        double busy = 0; // seconds of work, not of waiting at the barriers
 #ifdef _OPENMP
         t = omp_get_thread_num();
-        const double start = omp_get_wtime();
+        double start = omp_get_wtime();
 #endif
+        // 1. each thread gathers its rows; the offsets count from its first row
         for (int k = 0; k < listCount; ++k) {
             NeighbourList& list = *lists[k];
             std::vector<Index>& buffer = t == 0 ? list.indices : threadBuffers_[2 * t + k];
@@ -173,34 +177,41 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
                 return buffer.data() + size;
             };
             for (std::size_t i = first[t]; i < first[t + 1]; ++i) {
-                const std::size_t count = gather(k, i, reserve);
-                size += count;
-                list.offsets[i + 1] = std::uint32_t(count);
+                size += gather(k, i, reserve);
+                list.offsets[i + 1] = std::uint32_t(size);
             }
             used[2 * t + k] = size;
         }
 #ifdef _OPENMP
-        if (timed) searchSpeeds_.clocks[t].seconds += omp_get_wtime() - start;
+        busy += omp_get_wtime() - start;
 #endif
-    }
-    for (int k = 0; k < listCount; ++k) {
-        NeighbourList& list = *lists[k];
-        for (std::size_t i = 0; i < n; ++i) list.offsets[i + 1] += list.offsets[i];
-        list.indices.resize(list.offsets[n]);
-    }
-    // every thread copies a slice of every other thread's buffers
-#pragma omp parallel num_threads(threads)
-    {
-        int t = 0;
-#ifdef _OPENMP
-        t = omp_get_thread_num();
-#endif
-        for (int k = 0; k < listCount; ++k)
-            for (int u = 1; u < threads; ++u) {
-                const std::vector<Index>& buffer = threadBuffers_[2 * u + k];
-                const std::size_t size = used[2 * u + k], lo = size * t / threads, hi = size * (t + 1) / threads;
-                std::copy(buffer.begin() + lo, buffer.begin() + hi, lists[k]->indices.begin() + lists[k]->offsets[first[u]] + lo);
+#pragma omp barrier
+        // 2. the first thread's rows are in place; the lists take their final size
+        if (t == 0)
+            for (int k = 0; k < listCount; ++k) {
+                std::size_t total = 0;
+                for (int u = 0; u < threads; ++u) total += used[2 * u + k];
+                lists[k]->indices.resize(total);
             }
+#pragma omp barrier
+        // 3. every other thread moves its own rows after those before it (so the passes find them
+        // in its cache) and shifts its offsets by as much
+#ifdef _OPENMP
+        start = omp_get_wtime();
+#endif
+        if (t > 0)
+            for (int k = 0; k < listCount; ++k) {
+                NeighbourList& list = *lists[k];
+                std::size_t base = 0;
+                for (int u = 0; u < t; ++u) base += used[2 * u + k];
+                const std::vector<Index>& buffer = threadBuffers_[2 * t + k];
+                std::copy(buffer.begin(), buffer.begin() + used[2 * t + k], list.indices.begin() + base);
+                for (std::size_t i = first[t]; i < first[t + 1]; ++i) list.offsets[i + 1] += std::uint32_t(base);
+            }
+#ifdef _OPENMP
+        busy += omp_get_wtime() - start;
+#endif
+        if (timed) searchSpeeds_.clocks[t].seconds += busy;
     }
 }
 
