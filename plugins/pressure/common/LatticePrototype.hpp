@@ -7,7 +7,9 @@
 
 #include "KernelTable.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace spindrift {
 
@@ -37,6 +39,49 @@ inline LatticeGradientSums latticeGradientSums(const KernelTable& kernel, double
             }
     s.gradSumSquared = double(sum.squaredNorm());
     return s;
+}
+
+// How much PCISPH's correction overshoots on the lattice, at worst. A pressure wave
+// p_j = cos(k·x_j) moves the particles (eq. 3, ρ = ρ0) so that the density error of the wave
+// falls by β/2 |G(k)|² per unit pressure, G(k) = Σ_j sin(k·r_ij) ∇W_ij, while δ assumes
+// β Σ_j |∇W_ij|² (one particle's own response, eq. 8). One correction thus multiplies the wave's
+// error by 1 − g(k), g(k) = |G(k)|² / (2 Σ_j |∇W_ij|²), and the iteration diverges for a wave
+// with g(k) > 2. The gain grows with the neighbour count: 1.41 for the cubic spline at h = 2Δx
+// in 3D, 2.10 for the Wendland C2 at 2.6Δx in 3D, 2.84 at 4Δx in 2D. Returns the maximum of
+// g over the wave vectors of the lattice (k_a in [0, π/Δx], 'samples' a side: |G| is even in
+// every component of k on the symmetric lattice).
+inline double latticeMaxCorrectionGain(const KernelTable& kernel, double dx, int dimension, int samples = 48) {
+    const double h = kernel.supportRadius();
+    const int reach = int(std::ceil(h / dx));
+    std::vector<Vec3> offsets, gradients; // r_ij and ∇W_ij of the prototype's neighbours
+    double sumGradSquared = 0;
+    for (int k = (dimension == 3 ? -reach : 0); k <= (dimension == 3 ? reach : 0); ++k)
+        for (int j = -reach; j <= reach; ++j)
+            for (int i = -reach; i <= reach; ++i) {
+                const Vec3 rij(Scalar(-i * dx), Scalar(-j * dx), Scalar(-k * dx));
+                const Scalar r = rij.norm();
+                if (r == 0 || r >= h) continue;
+                offsets.push_back(rij);
+                gradients.push_back(kernel.gradW(rij, r));
+                sumGradSquared += double(gradients.back().squaredNorm());
+            }
+    if (!(sumGradSquared > 0)) return 0;
+    const double step = M_PI / (dx * (samples - 1));
+    double gain = 0;
+    for (int c = 0; c < (dimension == 3 ? samples : 1); ++c)
+        for (int b = 0; b < samples; ++b)
+            for (int a = 0; a < samples; ++a) {
+                const double kx = a * step, ky = b * step, kz = c * step;
+                double gx = 0, gy = 0, gz = 0;
+                for (std::size_t n = 0; n < offsets.size(); ++n) {
+                    const double w = std::sin(kx * offsets[n][0] + ky * offsets[n][1] + kz * offsets[n][2]);
+                    gx += w * gradients[n][0];
+                    gy += w * gradients[n][1];
+                    gz += w * gradients[n][2];
+                }
+                gain = std::max(gain, (gx * gx + gy * gy + gz * gz) / (2 * sumGradSquared));
+            }
+    return gain;
 }
 
 // PCISPH's δ = −1 / (β (−Σ∇W_ij·Σ∇W_ij − Σ ∇W_ij·∇W_ij)), β = 2 Δt² m² / ρ0² (eq. 8), so that

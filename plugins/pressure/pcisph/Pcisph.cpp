@@ -14,10 +14,17 @@
 // speed benchmark's dam break at Δt = 2 ms a front particle was thrown back from the side wall
 // at 38 m/s after 52 iterations and the run blew up at t = 0.35 s; with ρ̂ it runs the 1 s in
 // 3.6 iterations a step. Compressed particles keep their own density: with ρ0 for every
-// particle (as SPlisHSPlasH's PCISPH) a 3D block of Wendland C2 particles at 2.6Δx, 3 %
-// compressed, no longer converged (the error grew to 3.9 % in 200 iterations).
+// particle (as SPlisHSPlasH's PCISPH) a 3 %-compressed 3D block of Wendland C2 particles at
+// 2.6Δx no longer converged with the paper's δ (its lattice gain, below, is 2.10; ρ_i ≈ 1.03 ρ0
+// had kept the effective gain under 2).
 // δ = −1/(β(−Σ∇W·Σ∇W − Σ∇W·∇W)), β = 2Δt²m²/ρ0², from a prototype particle with a full
-// neighbourhood on the case's lattice (recomputed whenever Δt changes). The density error is
+// neighbourhood on the case's lattice (recomputed whenever Δt changes). δ is one particle's own
+// response; a pressure wave over the lattice moves its neighbours too, and with many neighbours
+// some waves respond more than twice as much, so the correction diverges on them
+// (latticeMaxCorrectionGain: 2.84 for the Wendland C2 at 4Δx in 2D, where taylorGreen2D blew up in
+// 7 steps; 2.10 at 2.6Δx in 3D, sinc² at 2.6Δx in 2D 2.03). Where the largest gain exceeds 1.8,
+// δ is scaled by 1.8/gain; the usual supports (cubic spline at 2Δx: 1.41 in 3D; Wendland C2 at
+// 2.6Δx in 2D: 1.30, at 3Δx: 1.67) keep the paper's δ, and their results are unchanged. The density error is
 // the compression max(0, ρ* − ρ0)/ρ0; η, its norm (maximum by default: every particle, as in
 // the paper) and the iteration limits come from system/sphSolution `pressure { }`. The check
 // comes before each correction, so the returned acceleration is the one whose prediction met
@@ -56,11 +63,15 @@ public:
         prototype_ = latticeGradientSums(s.kernel, s.physics.particleSpacing, s.physics.dimension);
         if (!(prototype_.sumGradSquared > 0))
             throw std::runtime_error("pcisph: the prototype particle has no neighbours (supportRadius too small)");
+        const double gain = latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension);
+        deltaScale_ = gain > maxCorrectionGain ? maxCorrectionGain / gain : 1.0;
         wallVolume_ = wallVolumes(s, adaptiveWalls_, "pcisph");
         s.soundSpeed = 0;
         std::ostringstream m;
         m << "pcisph: prototype particle with " << prototype_.neighbours << " lattice neighbours, "
-          << "sum grad W . grad W = " << prototype_.sumGradSquared << ", |sum grad W|^2 = " << prototype_.gradSumSquared;
+          << "sum grad W . grad W = " << prototype_.sumGradSquared << ", |sum grad W|^2 = " << prototype_.gradSumSquared
+          << "; largest correction gain of a lattice wave " << gain;
+        if (deltaScale_ < 1) m << " (the correction diverges above 2): delta scaled by " << deltaScale_;
         log::info(m.str());
     }
 
@@ -76,7 +87,7 @@ public:
         auto& a = s.fluid.acceleration();
         auto& p = s.fluid.pressure();
         if (dt != deltaDt_) {
-            delta_ = Scalar(pcisphDelta(prototype_, dt, s.fluid.particleMass(), rho0_));
+            delta_ = Scalar(deltaScale_ * pcisphDelta(prototype_, dt, s.fluid.particleMass(), rho0_));
             deltaDt_ = dt;
         }
         nonPressure_.resize(n);
@@ -131,6 +142,10 @@ private:
     std::vector<Scalar> wallVolume_;
     IterativeSolverControls controls_;
     LatticeGradientSums prototype_;
+    // δ is scaled down where a lattice wave's correction would exceed this gain (latticeMaxCorrectionGain):
+    // each correction then shrinks every wave's error at least by the factor 0.8
+    static constexpr double maxCorrectionGain = 1.8;
+    double deltaScale_ = 1;
     Scalar delta_ = 0, deltaDt_ = -1;
     std::vector<Vec3> nonPressure_, pressureAcc_, predicted_;
     std::vector<Scalar> rhoPredicted_, pOverRho2_;
