@@ -19,24 +19,27 @@ struct LatticeGradientSums {
     int neighbours = 0;         // lattice points with 0 < r < h
 };
 
-inline LatticeGradientSums latticeGradientSums(const KernelTable& kernel, double dx, int dimension) {
+// Calls f(r_ij, ∇W_ij) for every neighbour j of the prototype particle i at the origin.
+template <class F> void forEachLatticeNeighbour(const KernelTable& kernel, double dx, int dimension, F&& f) {
     const double h = kernel.supportRadius();
     const int reach = int(std::ceil(h / dx));
-    LatticeGradientSums s;
-    Vec3 sum = Vec3::Zero();
     for (int k = (dimension == 3 ? -reach : 0); k <= (dimension == 3 ? reach : 0); ++k)
         for (int j = -reach; j <= reach; ++j)
             for (int i = -reach; i <= reach; ++i) {
-                if (i == 0 && j == 0 && k == 0) continue;
-                // r_ij = x_i − x_j with x_i at the origin
-                const Vec3 rij(Scalar(-i * dx), Scalar(-j * dx), Scalar(-k * dx));
+                const Vec3 rij(Scalar(-i * dx), Scalar(-j * dx), Scalar(-k * dx)); // x_i − x_j
                 const Scalar r = rij.norm();
-                if (r >= h) continue;
-                const Vec3 g = kernel.gradW(rij, r);
-                sum += g;
-                s.sumGradSquared += double(g.squaredNorm());
-                ++s.neighbours;
+                if (r > 0 && r < h) f(rij, kernel.gradW(rij, r));
             }
+}
+
+inline LatticeGradientSums latticeGradientSums(const KernelTable& kernel, double dx, int dimension) {
+    LatticeGradientSums s;
+    Vec3 sum = Vec3::Zero();
+    forEachLatticeNeighbour(kernel, dx, dimension, [&](const Vec3&, const Vec3& g) {
+        sum += g;
+        s.sumGradSquared += double(g.squaredNorm());
+        ++s.neighbours;
+    });
     s.gradSumSquared = double(sum.squaredNorm());
     return s;
 }
@@ -51,20 +54,13 @@ inline LatticeGradientSums latticeGradientSums(const KernelTable& kernel, double
 // g over the wave vectors of the lattice (k_a in [0, π/Δx], 'samples' a side: |G| is even in
 // every component of k on the symmetric lattice).
 inline double latticeMaxCorrectionGain(const KernelTable& kernel, double dx, int dimension, int samples = 48) {
-    const double h = kernel.supportRadius();
-    const int reach = int(std::ceil(h / dx));
     std::vector<Vec3> offsets, gradients; // r_ij and ∇W_ij of the prototype's neighbours
     double sumGradSquared = 0;
-    for (int k = (dimension == 3 ? -reach : 0); k <= (dimension == 3 ? reach : 0); ++k)
-        for (int j = -reach; j <= reach; ++j)
-            for (int i = -reach; i <= reach; ++i) {
-                const Vec3 rij(Scalar(-i * dx), Scalar(-j * dx), Scalar(-k * dx));
-                const Scalar r = rij.norm();
-                if (r == 0 || r >= h) continue;
-                offsets.push_back(rij);
-                gradients.push_back(kernel.gradW(rij, r));
-                sumGradSquared += double(gradients.back().squaredNorm());
-            }
+    forEachLatticeNeighbour(kernel, dx, dimension, [&](const Vec3& rij, const Vec3& g) {
+        offsets.push_back(rij);
+        gradients.push_back(g);
+        sumGradSquared += double(g.squaredNorm());
+    });
     if (!(sumGradSquared > 0)) return 0;
     const double step = M_PI / (dx * (samples - 1));
     double gain = 0;
