@@ -24,9 +24,10 @@
 // (latticeMaxCorrectionGain: 2.84 for the Wendland C2 at 4Δx in 2D, where taylorGreen2D blew up in
 // 7 steps; 2.10 at 2.6Δx in 3D, sinc² at 2.6Δx in 2D 2.03). Where the largest gain exceeds 1.8,
 // δ is scaled by 1.8/gain; the usual supports (cubic spline at 2Δx: 1.41 in 3D; Wendland C2 at
-// 2.6Δx in 2D: 1.30, at 3Δx: 1.67) keep the paper's δ, and their results are unchanged. The density error is
-// the compression max(0, ρ* − ρ0)/ρ0; η, its norm (maximum by default: every particle, as in
-// the paper) and the iteration limits come from system/sphSolution `pressure { }`. The check
+// 2.6Δx in 2D: 1.30, at 3Δx: 1.67) keep the paper's δ, and their results are unchanged.
+// The density error is the compression max(0, ρ* − ρ0)/ρ0; η, its norm (maximum by default:
+// every particle, as in the paper) and the iteration limits come from system/sphSolution
+// `pressure { }`. The check
 // comes before each correction, so the returned acceleration is the one whose prediction met
 // η: with symplectic Euler the next step starts from the verified prediction (leapfrog: the
 // same for a constant Δt), up to neighbours that enter the support during the step (the
