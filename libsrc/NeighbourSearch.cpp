@@ -254,11 +254,11 @@ void NeighbourSearch::ThreadSpeeds::update(int threads) {
     if (int(speed.size()) != threads) speed.assign(threads, 1.0);
     if (int(clocks.size()) == threads) {
         // each thread's work per second since the last build, relative to the mean, averaged
-        // over the last steps (weight 1/4 for the newest): one noisy step moves it little
+        // over the last steps (weight 1/4 for the newest): one noisy step moves it little. A
+        // thread that found its range taken by the others when it started did no work at all.
         const auto rate = [&](int t) { return clocks[t].work / clocks[t].seconds; };
         double mean = 0;
-        for (int t = 0; t < threads; ++t)
-            mean += clocks[t].seconds > 0 && clocks[t].work > 0 ? rate(t) / threads : NAN;
+        for (int t = 0; t < threads; ++t) mean += clocks[t].seconds > 0 ? rate(t) / threads : NAN;
         if (mean > 0) { // every thread measured
             double sum = 0;
             for (int t = 0; t < threads; ++t) {
@@ -276,6 +276,7 @@ void NeighbourSearch::balanceWork(int threads) {
     // each thread's share in proportion to its speed
     passSpeeds_.update(threads);
     searchSpeeds_.update(threads);
+    if (int(cursors_.size()) != threads) cursors_.resize(threads);
     const std::size_t n = fluidFluid_.size();
     const auto balance = [&](std::vector<std::size_t>& ranges, PairWork kind, const std::vector<double>& speed) {
         ranges.assign(threads + 1, n);

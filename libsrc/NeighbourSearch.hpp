@@ -20,13 +20,15 @@
 // sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
 // the particle arrays every few steps for cache locality.
 // Pair loops run on thread ranges of equal work (workRange), split by the threads' measured
-// speeds.
+// speeds; a thread done with its range takes the last chunks of the others' (claimChunk).
 #pragma once
 
 #include "Types.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <type_traits>
 #include <utility>
@@ -334,10 +336,45 @@ public:
     // Thread t of a region balanced with workRange took 'seconds' for [first, last). Each
     // thread writes only its own slot; ignored when the thread count is not the build's.
     void recordTime(int t, int threads, PairWork work, std::size_t first, std::size_t last, double seconds) const {
+        recordWork(t, threads, pairsIn(first, last, work), seconds);
+    }
+    // The same for a thread that did 'pairs' of work (pairsIn of the chunks it took) in 'seconds'.
+    void recordWork(int t, int threads, double pairs, double seconds) const {
         if (threads != workRangeThreads() || threads < 2) return;
         ThreadClock& c = passSpeeds_.clocks[t];
-        c.work += double(pairWork(last, work) - pairWork(first, work));
+        c.work += pairs;
         c.seconds += seconds;
+    }
+    // The pair work of particles [first, last), in the units of the split.
+    double pairsIn(std::size_t first, std::size_t last, PairWork work) const {
+        return double(pairWork(last, work) - pairWork(first, work));
+    }
+
+    // Sharing the tail of a balanced region (forEachParticleBalanced). The split follows the
+    // speeds of the last steps, but a core is often slowed for a few microseconds at random (by
+    // another process, an interrupt), and the others then wait at the region's end: 4-7 % of a
+    // pass on this project's 2-core machines. So each thread takes its range in chunks, a
+    // quarter of what is left at a time and never fewer than minChunk particles, from an atomic
+    // cursor; a thread done with its own range takes chunks of the others'. Each region gets a
+    // new number (beginRegion, called by the thread that opens it), and the first thread to
+    // claim a range in it starts that range's cursor.
+    std::uint32_t beginRegion() const { return ++regions_ != 0 ? regions_ : ++regions_; }
+    bool sharesChunks(int threads) const { return threads <= int(cursors_.size()); }
+    // The next chunk [first, last) of thread owner's range in region 'region'; empty
+    // (first == last) when the range is done.
+    std::pair<std::size_t, std::size_t> claimChunk(int owner, int threads, PairWork work, std::uint32_t region) const {
+        const auto [first, last] = workRange(owner, threads, work);
+        std::atomic<std::uint64_t>& cursor = cursors_[owner].state;
+        const std::uint64_t tag = std::uint64_t(region) << 32, low = 0xffffffffULL;
+        std::uint64_t state = cursor.load(std::memory_order_relaxed);
+        // a failed exchange leaves in 'state' what another thread stored: this region's start
+        if ((state & ~low) != tag && cursor.compare_exchange_strong(state, tag | first, std::memory_order_relaxed))
+            state = tag | first;
+        const std::size_t next = std::size_t(state & low);
+        if (next >= last) return {last, last};
+        const std::size_t size = std::max(minChunk, (last - next) / 4);
+        const std::size_t begin = std::size_t(cursor.fetch_add(size, std::memory_order_relaxed) & low);
+        return {std::min(begin, last), std::min(begin + size, last)};
     }
     // The relative speeds the ranges were split by (mean 1), for tests and logs.
     const std::vector<double>& threadSpeeds() const { return passSpeeds_.speed; }
@@ -377,6 +414,18 @@ private:
         std::vector<double> speed;       // relative speed of each thread, mean 1
         void update(int threads);        // from the clocks, which it then resets
     };
+    struct alignas(64) ChunkCursor {                 // one cache line each
+        std::atomic<std::uint64_t> state{0};          // region << 32 | next particle
+        ChunkCursor() = default;
+        ChunkCursor(const ChunkCursor&) : state(0) {} // copies start afresh: region numbers are never 0
+        ChunkCursor& operator=(const ChunkCursor&) {
+            state = 0;
+            return *this;
+        }
+    };
+    mutable std::vector<ChunkCursor> cursors_; // one a thread, sized by balanceWork
+    mutable std::uint32_t regions_ = 0;
+    static constexpr std::size_t minChunk = 16;
     mutable ThreadSpeeds passSpeeds_; // the balanced passes' (recordTime)
     ThreadSpeeds searchSpeeds_;       // the list build's
     long builds_ = 0;
@@ -395,27 +444,39 @@ private:
     template <class Gather> void gatherLists(std::size_t n, bool walls, Gather&& gather);
 };
 
-// Calls f(i) for every fluid particle i in parallel, each thread over its workRange: for pair
-// loops over the step's lists (deterministic: every i is computed by one thread alone).
+// Calls f(i) for every fluid particle i in parallel, each thread over its workRange and then
+// over what is left of the others' (claimChunk): for pair loops over the step's lists
+// (deterministic: every i is computed by one thread alone, and f(i) writes only i's results).
 template <class F>
 void forEachParticleBalanced(const NeighbourSearch& search, F&& f,
                              NeighbourSearch::PairWork work = NeighbourSearch::PairWork::FluidAndWall) {
+#ifdef _OPENMP
+    const std::uint32_t region = search.beginRegion();
 #pragma omp parallel
     {
-        int t = 0, threads = 1;
-#ifdef _OPENMP
-        t = omp_get_thread_num();
-        threads = omp_get_num_threads();
-#endif
-        const auto [first, last] = search.workRange(t, threads, work);
-#ifdef _OPENMP
+        const int t = omp_get_thread_num(), threads = omp_get_num_threads();
         const double start = omp_get_wtime();
-#endif
-        for (std::size_t i = first; i < last; ++i) f(i);
-#ifdef _OPENMP
-        search.recordTime(t, threads, work, first, last, omp_get_wtime() - start);
-#endif
+        if (threads > 1 && search.sharesChunks(threads)) {
+            double pairs = 0;
+            for (int k = 0; k < threads; ++k) { // its own range first, then the others' tails
+                const int owner = (t + k) % threads;
+                for (auto chunk = search.claimChunk(owner, threads, work, region); chunk.first < chunk.second;
+                     chunk = search.claimChunk(owner, threads, work, region)) {
+                    for (std::size_t i = chunk.first; i < chunk.second; ++i) f(i);
+                    pairs += search.pairsIn(chunk.first, chunk.second, work);
+                }
+            }
+            search.recordWork(t, threads, pairs, omp_get_wtime() - start);
+        } else {
+            const auto [first, last] = search.workRange(t, threads, work);
+            for (std::size_t i = first; i < last; ++i) f(i);
+            search.recordTime(t, threads, work, first, last, omp_get_wtime() - start);
+        }
     }
+#else
+    for (std::size_t i = 0; i < search.fluidNeighbours().size(); ++i) f(i);
+    (void)work;
+#endif
 }
 
 // Builds a CSR list for n query points, calling query(i, push) where push(j) appends a

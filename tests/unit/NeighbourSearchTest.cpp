@@ -276,6 +276,43 @@ TEST(NeighbourSearch, WorkRangesFollowTheThreadsMeasuredSpeeds) {
 }
 #endif
 
+#ifdef _OPENMP
+// A balanced pass visits every particle exactly once. When a thread is held up (here thread 0,
+// 20 µs a particle), the others, done with their own ranges, take the rest of its range in
+// chunks instead of waiting; each thread's recorded work is what it did, so the next builds
+// give the slow thread less.
+TEST(NeighbourSearch, BalancedPassesShareTheRangeOfAHeldUpThread) {
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<Scalar> u(0, 1);
+    std::vector<Vec3> fluid(4000);
+    for (auto& p : fluid) p = Vec3(u(rng), u(rng), 0);
+    NeighbourSearch search;
+    search.setup(0.04, 2, Vec3::Zero(), Vec3(1, 1, 0));
+    const int saved = omp_get_max_threads();
+    for (int threads : {2, 3}) {
+        omp_set_num_threads(threads);
+        search.build(fluid);
+        const auto [first0, last0] = search.workRange(0, threads);
+        std::vector<int> visits(fluid.size(), 0), by(fluid.size(), -1);
+        forEachParticleBalanced(search, [&](std::size_t i) {
+            const int t = omp_get_thread_num();
+            ++visits[i];
+            by[i] = t;
+            if (t == 0)
+                for (const double start = omp_get_wtime(); omp_get_wtime() - start < 20e-6;) {
+                }
+        });
+        EXPECT_EQ(std::count(visits.begin(), visits.end(), 1), std::ptrdiff_t(fluid.size())) << threads;
+        const auto taken = std::count_if(by.begin() + first0, by.begin() + last0, [](int t) { return t != 0; });
+        EXPECT_GT(taken, std::ptrdiff_t(last0 - first0) / 2) << threads << " threads: " << taken << " of "
+                                                            << last0 - first0 << " taken from thread 0";
+        search.build(fluid); // the split learns from the work each thread did
+        EXPECT_LT(search.threadSpeeds()[0], 0.9) << threads;
+    }
+    omp_set_num_threads(saved);
+}
+#endif
+
 // Each build's grid covers only the cells its points occupy; queries from outside that range
 // (fluid beyond the walls' range, a point outside the domain) still find every neighbour.
 TEST_P(NeighbourSearchTest, GridCoversTheOccupiedCellsOnly) {
