@@ -1,7 +1,7 @@
 // Spindrift — micro-benchmarks of one step's parts on a 3D block of water (a lattice with a
 // small jitter, neighbours as in a run), at about 10k and 100k particles: neighbour search,
-// density pass, pressure force pass, one PCISPH iteration, one integrator step, and the
-// viscosity pass (to show what a case without viscosity saves).
+// space-filling-curve order, density pass, pressure force pass, one PCISPH iteration, one
+// integrator step, and the viscosity pass (to show what a case without viscosity saves).
 #include "Log.hpp"
 #include "ModelRegistry.hpp"
 #include "Simulation.hpp"
@@ -74,6 +74,18 @@ void NeighbourSearchBuild(benchmark::State& state) {
     report(state, scene);
 }
 
+// The order of the space-filling-curve re-sort (every few steps), on positions moved since
+// the last one.
+void SpaceFillingCurveOrder(benchmark::State& state) {
+    Scene scene(sideFor(state));
+    std::vector<Vec3> moved = scene.s.fluid.position();
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<Scalar> step(-0.2, 0.2);
+    for (Vec3& x : moved) x += scene.s.physics.particleSpacing * Vec3(step(rng), step(rng), step(rng));
+    for (auto _ : state) benchmark::DoNotOptimize(scene.s.search.sortOrder(moved));
+    report(state, scene);
+}
+
 void DensityPass(benchmark::State& state) {
     Scene scene(sideFor(state));
     for (auto _ : state) summationDensity(scene.s, scene.s.fluid.position(), scene.s.fluid.density());
@@ -122,6 +134,7 @@ void SymplecticEulerStep(benchmark::State& state) {
 // 22³ ≈ 10k and 46³ ≈ 100k particles
 #define SIZES Arg(22)->Arg(46)->Unit(benchmark::kMillisecond)
 BENCHMARK(NeighbourSearchBuild)->SIZES;
+BENCHMARK(SpaceFillingCurveOrder)->SIZES;
 BENCHMARK(DensityPass)->SIZES;
 BENCHMARK(WcsphForcePass)->SIZES;
 BENCHMARK(ArtificialViscosityPass)->SIZES;

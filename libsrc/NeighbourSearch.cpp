@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 namespace spindrift {
@@ -305,9 +306,31 @@ std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) c
     std::vector<std::uint64_t> codes(points.size());
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < points.size(); ++i) codes[i] = fluidGrid_.mortonCode(points[i]);
-    std::vector<Index> order(points.size());
+    // a stable LSD radix sort by code, 11 bits a pass, as many passes as the largest code needs
+    // (two for a lattice of up to 128 cells a side): a fifth of a stable comparison sort's time
+    // at 7k points, a third at 59k (it runs on one thread)
+    std::uint64_t largest = 0;
+    for (std::uint64_t c : codes) largest |= c;
+    const std::size_t n = points.size();
+    std::vector<Index> order(n), scratch(n);
+    std::vector<std::uint64_t> scratchCodes(n);
     std::iota(order.begin(), order.end(), Index(0));
-    std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return codes[a] < codes[b]; });
+    constexpr int digitBits = 11;
+    constexpr std::size_t buckets = std::size_t(1) << digitBits;
+    std::vector<std::size_t> next(buckets);
+    for (int shift = 0; shift < 64 && (largest >> shift) != 0; shift += digitBits) {
+        std::fill(next.begin(), next.end(), 0);
+        for (std::uint64_t c : codes) ++next[(c >> shift) & (buckets - 1)];
+        std::size_t slot = 0;
+        for (std::size_t& b : next) slot += std::exchange(b, slot); // the first slot of each digit
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t to = next[(codes[k] >> shift) & (buckets - 1)]++;
+            scratch[to] = order[k];
+            scratchCodes[to] = codes[k];
+        }
+        order.swap(scratch);
+        codes.swap(scratchCodes);
+    }
     return order;
 }
 
