@@ -332,15 +332,17 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
     double worstDensity = blowUpDensityError_;
     // a parallel look first (every step); the serial search for the worst particle only after
     // a blow-up
-    bool any = false;
+    // (without branches: a value not finite makes the sum's s − s NaN, which fails == 0)
+    int any = 0;
     const double speed2 = blowUpSpeed_ * blowUpSpeed_;
-#pragma omp parallel for schedule(static) reduction(|| : any)
+    bool bounded[3];
+    for (int d = 0; d < 3; ++d) bounded[d] = d < dim && !periodic_.axis[d];
+#pragma omp parallel for schedule(static) reduction(| : any)
     for (std::size_t i = 0; i < x.size(); ++i) {
-        bool bad = !x[i].allFinite() || !v[i].allFinite() || !a[i].allFinite() || !std::isfinite(rho[i]) ||
-                   !std::isfinite(p[i]) || v[i].squaredNorm() > speed2 || (rho[i] - rho0) / rho0 > worstDensity;
-        for (int d = 0; d < dim; ++d)
-            bad = bad || (!periodic_.axis[d] && (x[i][d] < blowUpMin_[d] || x[i][d] > blowUpMax_[d]));
-        any = any || bad;
+        const Scalar sum = x[i].sum() + v[i].sum() + a[i].sum() + rho[i] + p[i];
+        int bad = !(sum - sum == 0) | (v[i].squaredNorm() > speed2) | ((rho[i] - rho0) / rho0 > worstDensity);
+        for (int d = 0; d < 3; ++d) bad |= bounded[d] & ((x[i][d] < blowUpMin_[d]) | (x[i][d] > blowUpMax_[d]));
+        any |= bad;
     }
     densityOnly = false;
     if (!any) return {};
