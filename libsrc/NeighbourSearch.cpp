@@ -129,13 +129,13 @@ void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
 
 // Fills the fluid–fluid list, and the fluid–wall one when 'walls', for n fluid points in one
 // parallel region: gather(list, i, reserve) → count writes point i's neighbours in list 0
-// (fluid) or 1 (walls) to the array reserve(room) gives it. Each thread takes a contiguous
-// block of points (searchRange); the first writes straight into the lists, where its block
-// goes, the others into their own buffers (kept between calls), which each copies after the
-// blocks before it, so the lists do not depend on the thread count or the split. A thread's
-// time (gather and copy) updates the split of the next build: the copy's cost moves work to
-// the first thread. (When the first thread copied half of another's rows, a quarter of the
-// lists sat in the wrong core's cache for every pass of the step.)
+// (fluid) or 1 (walls) to the array reserve(room) gives it. Each thread takes its block of
+// points (searchRange) in chunks, and then what is left of the others' (claimChunk), writing
+// the rows into its own buffers (kept between calls); then each copies its chunks to their
+// place in the lists, so the lists do not depend on the thread count, the split or who took
+// what. The first thread writes its leading chunks straight into the lists, where they go.
+// A thread's time (gather and copy) and the pairs it gathered update the split of the next
+// build. (Each thread copies its own rows: the passes then find them in its cache.)
 template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool walls, Gather&& gather) {
     int threads = 1;
 #ifdef _OPENMP
@@ -143,76 +143,99 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
 #endif
     NeighbourList* lists[2] = {&fluidFluid_, &fluidBoundary_};
     const int listCount = walls ? 2 : 1;
-    // the ranges and the work they carry, from the last lists (before they are overwritten)
-    const bool timed = threads > 1 && threads == int(searchRanges_.size()) - 1 && searchRanges_.back() == n &&
-                       fluidFluid_.size() == n && fluidBoundary_.size() == n;
+    const bool timed = threads > 1 && threads == int(searchRanges_.size()) - 1 && searchRanges_.back() == n;
     std::vector<std::size_t> first(threads + 1);
     for (int t = 0; t <= threads; ++t) first[t] = timed ? searchRanges_[t] : n * t / threads;
-    if (timed) {
-        if (int(searchSpeeds_.clocks.size()) != threads) searchSpeeds_.clocks.assign(threads, ThreadClock{});
-        for (int t = 0; t < threads; ++t)
-            searchSpeeds_.clocks[t].work += double(pairWork(first[t + 1], PairWork::FluidAndWall) -
-                                                   pairWork(first[t], PairWork::FluidAndWall));
-    }
+    if (timed && int(searchSpeeds_.clocks.size()) != threads) searchSpeeds_.clocks.assign(threads, ThreadClock{});
     for (int k = 0; k < listCount; ++k) {
         lists[k]->offsets.resize(n + 1);
         lists[k]->offsets[0] = 0;
     }
     if (int(threadBuffers_.size()) < 2 * threads) threadBuffers_.resize(2 * threads);
-    std::vector<std::size_t> used(2 * threads, 0);
+    if (int(threadChunks_.size()) < threads) threadChunks_.resize(threads);
+    if (int(cursors_.size()) < threads) cursors_.resize(threads);
+    const std::uint32_t region = beginRegion();
 #pragma omp parallel num_threads(threads)
     {
         int t = 0;
-        double busy = 0; // seconds of work, not of waiting at the barriers
 #ifdef _OPENMP
         t = omp_get_thread_num();
         double start = omp_get_wtime();
 #endif
-        // 1. each thread gathers its rows; the offsets count from its first row
-        for (int k = 0; k < listCount; ++k) {
-            NeighbourList& list = *lists[k];
-            std::vector<Index>& buffer = t == 0 ? list.indices : threadBuffers_[2 * t + k];
-            std::size_t size = 0;
-            auto reserve = [&](std::size_t room) {
-                if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
-                return buffer.data() + size;
-            };
-            for (std::size_t i = first[t]; i < first[t + 1]; ++i) {
-                size += gather(k, i, reserve);
-                list.offsets[i + 1] = std::uint32_t(size);
+        double busy = 0, pairs = 0; // seconds of work (not of waiting), and the pairs found
+        // 1. the thread gathers its chunks; the offsets count in its buffers
+        std::vector<GatherChunk>& chunks = threadChunks_[t];
+        chunks.clear();
+        std::size_t used[2] = {0, 0}, inPlaceUsed[2] = {0, 0}, inPlaceEnd = 0;
+        for (int k = 0; k < threads; ++k) { // its own block first, then the others'
+            const int owner = (t + k) % threads;
+            for (auto [a, b] = claimChunk(owner, first[owner], first[owner + 1], region); a < b;
+                 std::tie(a, b) = claimChunk(owner, first[owner], first[owner + 1], region)) {
+                GatherChunk chunk{a, b, {}, {}, {}, t == 0 && a == inPlaceEnd};
+                for (int l = 0; l < listCount; ++l) {
+                    NeighbourList& list = *lists[l];
+                    std::vector<Index>& buffer = chunk.inPlace ? list.indices : threadBuffers_[2 * t + l];
+                    std::size_t& size = chunk.inPlace ? inPlaceUsed[l] : used[l];
+                    auto reserve = [&](std::size_t room) {
+                        if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
+                        return buffer.data() + size;
+                    };
+                    chunk.start[l] = size;
+                    for (std::size_t i = a; i < b; ++i) {
+                        size += gather(l, i, reserve);
+                        list.offsets[i + 1] = std::uint32_t(size);
+                    }
+                    chunk.end[l] = size;
+                    pairs += double(size - chunk.start[l]);
+                }
+                if (chunk.inPlace) inPlaceEnd = b;
+                chunks.push_back(chunk);
             }
-            used[2 * t + k] = size;
         }
 #ifdef _OPENMP
         busy += omp_get_wtime() - start;
 #endif
 #pragma omp barrier
-        // 2. the first thread's rows are in place; the lists take their final size
-        if (t == 0)
-            for (int k = 0; k < listCount; ++k) {
+#pragma omp single
+        {
+            // 2. the chunks in the order of their points: each one's place in the lists
+            chunkOrder_.clear();
+            for (int u = 0; u < threads; ++u)
+                for (GatherChunk& c : threadChunks_[u]) chunkOrder_.push_back(&c);
+            std::sort(chunkOrder_.begin(), chunkOrder_.end(),
+                      [](const GatherChunk* x, const GatherChunk* y) { return x->first < y->first; });
+            for (int l = 0; l < listCount; ++l) {
                 std::size_t total = 0;
-                for (int u = 0; u < threads; ++u) total += used[2 * u + k];
-                lists[k]->indices.resize(total);
+                for (GatherChunk* c : chunkOrder_) {
+                    c->target[l] = total;
+                    total += c->end[l] - c->start[l];
+                }
+                lists[l]->indices.resize(total);
             }
-#pragma omp barrier
-        // 3. every other thread moves its own rows after those before it (so the passes find them
-        // in its cache) and shifts its offsets by as much
+        }
+        // 3. each thread moves its chunks' rows there (the first thread's leading ones are in
+        // place) and shifts their offsets by as much
 #ifdef _OPENMP
         start = omp_get_wtime();
 #endif
-        if (t > 0)
-            for (int k = 0; k < listCount; ++k) {
-                NeighbourList& list = *lists[k];
-                std::size_t base = 0;
-                for (int u = 0; u < t; ++u) base += used[2 * u + k];
-                const std::vector<Index>& buffer = threadBuffers_[2 * t + k];
-                std::copy(buffer.begin(), buffer.begin() + used[2 * t + k], list.indices.begin() + base);
-                for (std::size_t i = first[t]; i < first[t + 1]; ++i) list.offsets[i + 1] += std::uint32_t(base);
+        for (const GatherChunk& c : chunks) {
+            if (c.inPlace) continue;
+            for (int l = 0; l < listCount; ++l) {
+                NeighbourList& list = *lists[l];
+                const std::vector<Index>& buffer = threadBuffers_[2 * t + l];
+                std::copy(buffer.begin() + c.start[l], buffer.begin() + c.end[l], list.indices.begin() + c.target[l]);
+                const std::uint32_t shift = std::uint32_t(c.target[l] - c.start[l]); // modulo 2^32
+                for (std::size_t i = c.first; i < c.last; ++i) list.offsets[i + 1] += shift;
             }
+        }
 #ifdef _OPENMP
         busy += omp_get_wtime() - start;
 #endif
-        if (timed) searchSpeeds_.clocks[t].seconds += busy;
+        if (timed) {
+            for (const GatherChunk& c : chunks) pairs += double(perParticle * (c.last - c.first));
+            searchSpeeds_.clocks[t].work += pairs;
+            searchSpeeds_.clocks[t].seconds += busy;
+        }
     }
 }
 

@@ -14,7 +14,7 @@
 // Lists are compact (CSR): for particle i, indices[offsets[i] .. offsets[i+1]) excluding i.
 // The grid keeps its points in cell order as a structure of arrays, so the per-step list
 // build scans contiguous memory without branches (gatherWithin); in one parallel region each
-// thread fills its own persistent buffers, fluid and wall, for a contiguous block of particles.
+// thread fills its own persistent buffers, fluid and wall, for chunks of its block of particles.
 // Fluid–fluid and fluid–boundary lists are rebuilt each step; the static boundary grid is
 // built once and boundary–boundary pairs are never searched during the run.
 // sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
@@ -364,18 +364,9 @@ public:
     // (first == last) when the range is done.
     std::pair<std::size_t, std::size_t> claimChunk(int owner, int threads, PairWork work, std::uint32_t region) const {
         const auto [first, last] = workRange(owner, threads, work);
-        std::atomic<std::uint64_t>& cursor = cursors_[owner].state;
-        const std::uint64_t tag = std::uint64_t(region) << 32, low = 0xffffffffULL;
-        std::uint64_t state = cursor.load(std::memory_order_relaxed);
-        // a failed exchange leaves in 'state' what another thread stored: this region's start
-        if ((state & ~low) != tag && cursor.compare_exchange_strong(state, tag | first, std::memory_order_relaxed))
-            state = tag | first;
-        const std::size_t next = std::size_t(state & low);
-        if (next >= last) return {last, last};
-        const std::size_t size = std::max(minChunk, (last - next) / 4);
-        const std::size_t begin = std::size_t(cursor.fetch_add(size, std::memory_order_relaxed) & low);
-        return {std::min(begin, last), std::min(begin + size, last)};
+        return claimChunk(owner, first, last, region);
     }
+
     // The relative speeds the ranges were split by (mean 1), for tests and logs.
     const std::vector<double>& threadSpeeds() const { return passSpeeds_.speed; }
     // The same for the list build's own split (searchRange): the search's cost per pair of the
@@ -404,6 +395,14 @@ private:
     NeighbourList fluidFluid_, fluidBoundary_;
     // kept between steps, no allocation per step: [2 t] thread t's fluid neighbours, [2 t + 1] its wall ones
     std::vector<std::vector<Index>> threadBuffers_;
+    struct GatherChunk {          // particles [first, last) gathered by one thread
+        std::size_t first, last;
+        std::size_t start[2], end[2]; // their rows in the thread's buffer (fluid, walls)
+        std::size_t target[2];        // and in the lists
+        bool inPlace;                 // gathered straight into the lists (the first thread's leading chunks)
+    };
+    std::vector<std::vector<GatherChunk>> threadChunks_; // kept between builds
+    std::vector<GatherChunk*> chunkOrder_;
     // threads + 1 bounds: the passes' (workRange) and the list build's (searchRange)
     std::vector<std::size_t> workRanges_, fluidWorkRanges_, searchRanges_;
     struct alignas(64) ThreadClock { // one cache line each: the threads write them concurrently
@@ -441,6 +440,21 @@ private:
         return {n * t / threads, n * (t + 1) / threads};
     }
     void balanceWork(int threads);
+    // The next chunk of [first, last), the range of thread owner, in region 'region'.
+    std::pair<std::size_t, std::size_t> claimChunk(int owner, std::size_t first, std::size_t last,
+                                                   std::uint32_t region) const {
+        std::atomic<std::uint64_t>& cursor = cursors_[owner].state;
+        const std::uint64_t tag = std::uint64_t(region) << 32, low = 0xffffffffULL;
+        std::uint64_t state = cursor.load(std::memory_order_relaxed);
+        // a failed exchange leaves in 'state' what another thread stored: this region's start
+        if ((state & ~low) != tag && cursor.compare_exchange_strong(state, tag | first, std::memory_order_relaxed))
+            state = tag | first;
+        const std::size_t next = std::size_t(state & low);
+        if (next >= last) return {last, last};
+        const std::size_t size = std::max(minChunk, (last - next) / 4);
+        const std::size_t begin = std::size_t(cursor.fetch_add(size, std::memory_order_relaxed) & low);
+        return {std::min(begin, last), std::min(begin + size, last)};
+    }
     template <class Gather> void gatherLists(std::size_t n, bool walls, Gather&& gather);
 };
 
