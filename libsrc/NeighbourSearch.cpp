@@ -88,28 +88,59 @@ void UniformGrid::build(const std::vector<Vec3>& points) {
     }
     const std::size_t cells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
     cellOf_.resize(n);
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-        int c[3];
-        cellCoords(points[i], c);
-        cellOf_[i] = Index((std::size_t(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0]);
-    }
-    // stable counting sort: cellStart_[c] = first slot of cell c
-    cellStart_.assign(cells + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) ++cellStart_[cellOf_[i]];                // the count of cell c
-    for (std::size_t c = 1; c < cells; ++c) cellStart_[c] += cellStart_[c - 1]; // one past its last slot
     sorted_.resize(n);
-    for (std::size_t i = n; i-- > 0;) sorted_[--cellStart_[cellOf_[i]]] = Index(i); // the last first
+    cellStart_.resize(cells + 1);
     cellStart_[cells] = Index(n);
     cellX_.resize(n);
     cellY_.resize(n);
     cellZ_.resize(n);
-#pragma omp parallel for schedule(static)
-    for (std::size_t k = 0; k < n; ++k) {
-        const Vec3& x = points[sorted_[k]];
-        cellX_[k] = x[0];
-        cellY_[k] = x[1];
-        cellZ_[k] = x[2];
+    int threads = 1;
+#ifdef _OPENMP
+    threads = n < 4096 ? 1 : omp_get_max_threads(); // a few points: not worth the barriers
+#endif
+    blockPoints_.resize(std::size_t(threads));
+#pragma omp parallel num_threads(threads)
+    {
+        int t = 0;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+#endif
+#pragma omp for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            int c[3];
+            cellCoords(points[i], c);
+            cellOf_[i] = Index((std::size_t(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0]);
+        }
+        // A stable counting sort by cell, each thread for a block of cells: it counts the points
+        // in its cells, sums them up (after the points of the blocks before), and puts them in
+        // place, the last first, so cellStart_[c] ends as the first slot of cell c. A point's
+        // slot depends only on the points before it in its cell, so on no thread count.
+        const std::size_t cellFirst = cells * t / threads, span = cells * (t + 1) / threads - cellFirst;
+        Index* start = cellStart_.data() + cellFirst;
+        std::fill(start, start + span, Index(0));
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t c = cellOf_[i] - cellFirst; // wraps above span for the cells before
+            if (c < span) ++start[c];
+        }
+        std::size_t inBlock = 0;
+        for (std::size_t c = 0; c < span; ++c) start[c] = Index(inBlock += start[c]); // one past the cell's last
+        blockPoints_[t] = inBlock;
+#pragma omp barrier
+        std::size_t before = 0;
+        for (int u = 0; u < t; ++u) before += blockPoints_[u];
+        for (std::size_t c = 0; c < span; ++c) start[c] += Index(before);
+        for (std::size_t i = n; i-- > 0;) {
+            const std::size_t c = cellOf_[i] - cellFirst;
+            if (c < span) sorted_[--start[c]] = Index(i);
+        }
+#pragma omp barrier
+#pragma omp for schedule(static)
+        for (std::size_t k = 0; k < n; ++k) {
+            const Vec3& x = points[sorted_[k]];
+            cellX_[k] = x[0];
+            cellY_[k] = x[1];
+            cellZ_[k] = x[2];
+        }
     }
 }
 

@@ -286,6 +286,7 @@ private:
     std::vector<Index> cellStart_; // size cells + 1
     std::vector<Index> sorted_;    // point indices bucketed by cell
     std::vector<Index> cellOf_;    // scratch
+    std::vector<std::size_t> blockPoints_; // scratch: the points in each thread's block of cells
     std::vector<Scalar> cellX_, cellY_, cellZ_; // positions in sorted_ order (structure of arrays)
 };
 
