@@ -101,9 +101,10 @@ void UniformGrid::build(const std::vector<Vec3>& points) {
     blockPoints_.resize(std::size_t(threads));
 #pragma omp parallel num_threads(threads)
     {
-        int t = 0;
+        int t = 0, team = 1; // the team may be smaller than asked for (a nested region)
 #ifdef _OPENMP
         t = omp_get_thread_num();
+        team = omp_get_num_threads();
 #endif
 #pragma omp for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
@@ -115,7 +116,7 @@ void UniformGrid::build(const std::vector<Vec3>& points) {
         // in its cells, sums them up (after the points of the blocks before), and puts them in
         // place, the last first, so cellStart_[c] ends as the first slot of cell c. A point's
         // slot depends only on the points before it in its cell, so on no thread count.
-        const std::size_t cellFirst = cells * t / threads, span = cells * (t + 1) / threads - cellFirst;
+        const std::size_t cellFirst = cells * t / team, span = cells * (t + 1) / team - cellFirst;
         Index* start = cellStart_.data() + cellFirst;
         std::fill(start, start + span, Index(0));
         for (std::size_t i = 0; i < n; ++i) {

@@ -423,7 +423,7 @@ private:
             return *this;
         }
     };
-    mutable std::vector<ChunkCursor> cursors_; // one a thread, sized by balanceWork
+    mutable std::vector<ChunkCursor> cursors_; // one a thread, sized by balanceWork (and gatherLists)
     mutable std::uint32_t regions_ = 0;
     static constexpr std::size_t minChunk = 16;
     mutable ThreadSpeeds passSpeeds_; // the balanced passes' (recordTime)
