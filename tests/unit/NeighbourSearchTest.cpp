@@ -282,10 +282,7 @@ TEST(NeighbourSearch, WorkRangesFollowTheThreadsMeasuredSpeeds) {
 // chunks instead of waiting; each thread's recorded work is what it did, so the next builds
 // give the slow thread less.
 TEST(NeighbourSearch, BalancedPassesShareTheRangeOfAHeldUpThread) {
-    std::mt19937 rng(8);
-    std::uniform_real_distribution<Scalar> u(0, 1);
-    std::vector<Vec3> fluid(4000);
-    for (auto& p : fluid) p = Vec3(u(rng), u(rng), 0);
+    const std::vector<Vec3> fluid = randomPoints(4000, 2, 1.0, 8);
     NeighbourSearch search;
     search.setup(0.04, 2, Vec3::Zero(), Vec3(1, 1, 0));
     const int saved = omp_get_max_threads();
