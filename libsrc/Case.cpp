@@ -1,6 +1,8 @@
 #include "Case.hpp"
 
+#include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 namespace fs = std::filesystem;
 
@@ -50,6 +52,32 @@ PhysicalParameters readPhysicalParameters(const Dictionary& d) {
     p.supportRadius = Scalar(factor) * p.particleSpacing;
     d.checkAllKeywordsUsed();
     return p;
+}
+
+bool isTimeName(const std::string& name) {
+    if (name.empty()) return false;
+    char* end = nullptr;
+    std::strtod(name.c_str(), &end);
+    return end == name.c_str() + name.size();
+}
+
+void copyCaseInput(const fs::path& source, const fs::path& target) {
+    std::error_code ec;
+    if (!fs::is_directory(source, ec)) throw std::runtime_error("case directory '" + source.string() + "' does not exist");
+    if (fs::exists(target, ec) && !fs::is_empty(target, ec))
+        throw std::runtime_error("'" + target.string() + "' exists already and is not empty");
+    fs::create_directories(target);
+    for (const auto& entry : fs::directory_iterator(source)) {
+        const std::string name = entry.path().filename().string();
+        if (name.empty() || name[0] == '.') continue;
+        if (entry.is_directory()) {
+            if (isTimeName(name) || name == "postProcessing" || name == "run") continue;
+        } else {
+            const std::string ext = entry.path().extension().string();
+            if (name.rfind("log.", 0) == 0 || ext == ".pvd" || ext == ".png" || ext == ".tmp") continue;
+        }
+        fs::copy(entry.path(), target / name, fs::copy_options::recursive);
+    }
 }
 
 } // namespace spindrift

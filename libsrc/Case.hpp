@@ -26,4 +26,12 @@ struct Case {
 //   particleSpacing 0.002;  supportRadius 2.6;  // support h in units of particleSpacing
 PhysicalParameters readPhysicalParameters(const Dictionary& fluidProperties);
 
+// Copies a case's input to 'target' (created; it must not exist or be empty): everything but
+// what a run leaves behind (time directories, .<time>.tmp, postProcessing/, log.*, *.pvd,
+// plots, hidden files), as OpenFOAM's cloneCase. Tests, the bench utilities and ./Allrun copy
+// tutorials with it, so they never read another run's results.
+void copyCaseInput(const std::filesystem::path& source, const std::filesystem::path& target);
+// True for a name a run writes results under: a number (a time directory).
+bool isTimeName(const std::string& name);
+
 } // namespace spindrift

@@ -3,6 +3,7 @@
 # one-line message on stderr, and no time directory written or touched.
 #   badInputs.sh <spindrift> <tutorials dir> <table>
 set -uo pipefail
+. "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
 solver=$1 tutorials=$2 table=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -14,7 +15,7 @@ while IFS= read -r line; do
     find=${rest%% | *}; rest=${rest#* | }
     if [[ "$rest" == "| "* ]]; then replace=""; expected=${rest#| }; else replace=${rest%% | *}; expected=${rest#* | }; fi
     case="$work/$name"
-    cp -r "$tutorials/hydrostaticTank2D" "$case"
+    cloneCase "$tutorials/hydrostaticTank2D" "$case"
     FIND="$find" REPLACE="$replace" python3 - "$case/$file" <<'PY' || { echo "FAIL $name: edit"; failures=$((failures+1)); continue; }
 import os, sys
 p = sys.argv[1]; s = open(p).read()

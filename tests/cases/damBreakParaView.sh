@@ -3,10 +3,11 @@
 # the arrays velocity, pressure, density, id.
 #   damBreakParaView.sh <spindrift> <tutorial dir> <pvpython_check.py> <pvpython>
 set -euo pipefail
+. "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
 solver=$1 tutorial=$2 check=$3 pvpython=${4:-pvpython}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp -r "$tutorial" "$work/damBreak2D"
+cloneCase "$tutorial" "$work/damBreak2D"
 cd "$work/damBreak2D"
 sed -i -E 's/^endTime .*/endTime 0.05;/; s/^writeInterval .*/writeInterval 0.01;/' system/controlDict
 "$solver" -case . > log.spindrift 2>&1 || { tail -n 20 log.spindrift; exit 1; }

@@ -8,6 +8,7 @@
 #     and reached errors are in postProcessing/solverPerformance/0/solverPerformance.dat.
 #   incompressibleSolvers.sh <spindrift> <tutorials dir>
 set -euo pipefail
+. "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
 solver=$1 tutorials=$2
 fail() { echo "FAIL: $*"; exit 1; }
 work=$(mktemp -d)
@@ -22,7 +23,7 @@ for tutorial in damBreak2D damBreak3D; do
     [ -f "$tutorials/$tutorial/system/sphSolution" ] || fail "$tutorial has no system/sphSolution"
     for model in pcisph pbf relaxedPbf dfsph wcsph; do
         rm -rf "$work/case"
-        cp -r "$tutorials/$tutorial" "$work/case"
+        cloneCase "$tutorials/$tutorial" "$work/case"
         swap "$work/case" $model
         [ "$(diff "$tutorials/$tutorial/system/sphSchemes" "$work/case/system/sphSchemes" | grep -c '^>')" -le 1 ] \
             || fail "$tutorial: swapping to $model changed more than one line"
@@ -39,7 +40,7 @@ done
 # maxIterations reached: said on the step line and recorded
 for model in pcisph relaxedPbf; do
     rm -rf "$work/tank"
-    cp -r "$tutorials/hydrostaticTank2D" "$work/tank"
+    cloneCase "$tutorials/hydrostaticTank2D" "$work/tank"
     sed -i '/^pressure/,/^}/c\pressure\n{\n    type        '$model';\n}' "$work/tank/system/sphSchemes"
     sed -i 's/^\(    alpha .*\)$/\1\n    soundSpeed  25;/' "$work/tank/system/sphSchemes"
     sed -i 's/^endTime .*/endTime 0.005;/; s/^deltaT .*/deltaT 5e-4;/; s/^adjustTimeStep .*/adjustTimeStep no;/; s/^writeInterval .*/writeInterval 0.005;/' \

@@ -4,13 +4,14 @@
 # time directories (and a .pvd listing only those), and the run continues from the latest.
 #   interruptions.sh <spindrift> <tutorials dir>
 set -euo pipefail
+. "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
 solver=$1 tutorials=$2
 work=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 
 newCase() { # newCase <name> <endTime>
-    cp -r "$tutorials/damBreak2D" "$work/$1"
+    cloneCase "$tutorials/damBreak2D" "$work/$1"
     sed -i -E "s/^endTime .*/endTime $2;/; s/^writeInterval .*/writeInterval 0.005;/" "$work/$1/system/controlDict"
 }
 waitFor() { # waitFor <path> <pid>

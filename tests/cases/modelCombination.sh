@@ -10,12 +10,13 @@
 # the other entries are replaced by `{ type <type>; }` (the model's defaults). Either form of
 # entry works: a block, or `kind $someDict;`. kind `none` runs the tutorial's own models.
 set -euo pipefail
+. "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
 solver=$1 inBox=$2 tutorial=$3 kind=$4 type=$5 endTime=$6 maxError=$7
 shift 7
 box=("$@")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp -r "$tutorial" "$work/case"
+cloneCase "$tutorial" "$work/case"
 cd "$work/case"
 schemes=system/sphSchemes
 if [ "$kind" = none ]; then

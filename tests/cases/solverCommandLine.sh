@@ -2,6 +2,7 @@
 # The solver's command line: -help, -listModels [kind], -dryRun, bad arguments.
 #   solverCommandLine.sh <spindrift> <tutorials dir>
 set -euo pipefail
+. "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
 solver=$1 tutorials=$2
 fail() { echo "FAIL: $*"; exit 1; }
 
@@ -17,7 +18,7 @@ if "$solver" -listModels nonsense 2>/dev/null; then fail "-listModels with an un
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp -r "$tutorials/damBreak2D" "$work/case"
+cloneCase "$tutorials/damBreak2D" "$work/case"
 out=$("$solver" -case "$work/case" -dryRun -threads 1)
 echo "$out"
 grep -q "3200 fluid" <<< "$out" || fail "-dryRun does not report the 3200 fluid particles"

@@ -1,6 +1,7 @@
 // Bad input gives one clear error naming file, line and keyword — and writes nothing.
 // The cases are the rows of tests/data/badInputs.table (shared with tests/cases/badInputs.sh,
 // which runs the real binary on the same table).
+#include "Case.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
 #include "TestSupport.hpp"
@@ -62,7 +63,7 @@ std::vector<BadInput> readTable() {
 // must not be touched.
 fs::path prepareCase(const test::TempDir& tmp, const BadInput& row) {
     const fs::path caseDir = tmp.path() / "case";
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", caseDir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", caseDir);
     const fs::path file = caseDir / row.file;
     std::string text = test::readFile(file);
     const std::size_t at = text.find(row.find);
@@ -117,7 +118,7 @@ TEST(BadInput, CaseDirectoryNotWritable) {
     if (::geteuid() == 0) GTEST_SKIP() << "running as root: permissions do not stop root from writing";
     test::TempDir tmp;
     const fs::path caseDir = tmp.path() / "case";
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", caseDir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", caseDir);
     fs::permissions(caseDir, fs::perms::owner_write, fs::perm_options::remove);
     EXPECT_THROW(
         {

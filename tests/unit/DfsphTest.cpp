@@ -4,6 +4,7 @@
 // divergence solve removes a converging velocity field, a hydrostatic column (the
 // hydrostaticTank2D tutorial run in-process) stays at rest near ρ0, and bad tolerances are
 // refused.
+#include "Case.hpp"
 #include "Integrator.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
@@ -51,7 +52,7 @@ struct Scene : test::BlockScene {
 fs::path dfsphTank(const test::TempDir& tmp, const std::string& pressureEntries, double endTime, double maxCo,
                    double maxDeltaT) {
     const fs::path dir = tmp.path() / "tank";
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir);
     std::string schemes = test::readFile(dir / "system/sphSchemes");
     schemes = std::regex_replace(schemes, std::regex("\npressure\\s*\\{[^}]*\\}"),
                                  "\npressure\n{\n    type dfsph; " + pressureEntries + "\n}",

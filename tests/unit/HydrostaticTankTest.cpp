@@ -1,5 +1,6 @@
 // End to end: the hydrostaticTank2D tutorial (copied, run in-process) settles to
 // p = ρ0 g (H − z) and keeps every particle in the tank.
+#include "Case.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
 #include "TestSupport.hpp"
@@ -13,7 +14,7 @@ namespace {
 
 fs::path copyTutorial(const std::string& name, const fs::path& into) {
     const fs::path target = into / name;
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials" / name, target, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials" / name, target);
     return target;
 }
 

@@ -4,6 +4,7 @@
 // density is clamped, the λ warm start and the over-relaxation cut iterations, a hydrostatic
 // column stays within η of ρ0 (hydrostaticTank2D run in-process), and the vorticity estimate
 // and confinement force on analytic velocity fields.
+#include "Case.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
 #include "SphOperators.hpp"
@@ -204,7 +205,7 @@ TEST(RelaxedPbf, KeepsAHydrostaticColumnWithinEtaOfRestDensity) {
     log::setQuiet(true);
     test::TempDir tmp;
     const fs::path dir = tmp.path() / "tank";
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir);
     std::string schemes = test::readFile(dir / "system/sphSchemes");
     schemes = replaceBlock(schemes, "pressure", "type relaxedPbf;");
     schemes = replaceBlock(schemes, "viscosity", "type artificial; alpha 0.1; soundSpeed 25;");

@@ -3,6 +3,7 @@
 // acceleration realising the verified prediction, the maxIterations stop, the lattice
 // correction gain that scales δ for wide supports, a hydrostatic column kept within η of ρ0
 // (the hydrostaticTank2D tutorial run in-process) and the speed benchmark's dam break at 2 ms.
+#include "Case.hpp"
 #include "../../plugins/pressure/common/LatticePrototype.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
@@ -199,7 +200,7 @@ TEST(Pcisph, KeepsAHydrostaticColumnWithinEtaOfRestDensity) {
     log::setQuiet(true);
     test::TempDir tmp;
     const fs::path dir = tmp.path() / "tank";
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir);
     std::string schemes = readText(dir / "system/sphSchemes");
     schemes = replaceBlock(schemes, "pressure", "type pcisph;");
     schemes = replaceBlock(schemes, "viscosity", "type artificial; alpha 0.1; soundSpeed 25;");
@@ -275,7 +276,7 @@ TEST(Pcisph, RunsTheBenchmarkDamBreakAtTwoMillisecondsThroughTheWallImpact) {
     log::setQuiet(true);
     test::TempDir tmp;
     const fs::path dir = tmp.path() / "cube";
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/benchmarks/damBreakCube3D", dir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/benchmarks/damBreakCube3D", dir);
     writeText(dir / "system/sphSchemes", replaceBlock(readText(dir / "system/sphSchemes"), "pressure", "type pcisph;"));
     std::string control = readText(dir / "system/controlDict");
     control = std::regex_replace(control, std::regex("\nendTime[^;]*;"), "\nendTime 0.4;");

@@ -2,6 +2,7 @@
 // T/2 → T, for every integrator and pressure model found on the plugin path, and whatever the
 // thread count. Blow-ups stop with a message and the last good state written; onBlowUp
 // reduceDeltaT retries.
+#include "Case.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
 #include "TestSupport.hpp"
@@ -36,7 +37,7 @@ void editDictionary(const fs::path& file, const std::vector<std::pair<std::strin
 // A small dam break (about 450 particles) with the given integrator and pressure model.
 fs::path makeCase(const fs::path& dir, const std::string& integrator, const std::string& pressure, double endTime,
                   const std::string& pressureOptions = "") {
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/damBreak2D", dir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/damBreak2D", dir);
     editDictionary(dir / "constant/fluidProperties", {{"particleSpacing", "0.0047625"}}); // a/12
     editDictionary(dir / "system/controlDict", {{"endTime", std::to_string(endTime)}, {"writeInterval", "0.005"},
                                                  {"maxCo", "0.1"}});
@@ -124,7 +125,7 @@ INSTANTIATE_TEST_SUITE_P(EveryIntegratorAndPressureModel, RestartTest, testing::
                          [](const auto& info) { return info.param.name(); });
 
 fs::path tooLargeTimeStep(const fs::path& dir, const std::string& onBlowUp) {
-    fs::copy(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir, fs::copy_options::recursive);
+    copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir);
     // about 6 times the stable step, fixed
     editDictionary(dir / "system/controlDict", {{"adjustTimeStep", "no"}, {"deltaT", "1e-3"}, {"endTime", "0.05"},
                                                  {"writeInterval", "0.05"}, {"onBlowUp", onBlowUp}});

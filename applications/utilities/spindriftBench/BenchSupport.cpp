@@ -293,22 +293,6 @@ void CaseDictionaries::write() const {
 
 // ---------------------------------------------------------------------------------------------
 
-void copyCaseInput(const fs::path& source, const fs::path& target) {
-    if (fs::exists(target)) throw std::runtime_error("'" + target.string() + "' exists already");
-    fs::create_directories(target);
-    for (const auto& entry : fs::directory_iterator(source)) {
-        const std::string name = entry.path().filename().string();
-        const bool isDir = entry.is_directory();
-        if (name.empty() || name[0] == '.') continue;
-        if (isDir && (isNumber(name) || name == "postProcessing")) continue;
-        if (!isDir) {
-            const std::string ext = entry.path().extension().string();
-            if (name.rfind("log.", 0) == 0 || ext == ".pvd" || ext == ".png" || ext == ".tmp") continue;
-        }
-        fs::copy(entry.path(), target / name, fs::copy_options::recursive);
-    }
-}
-
 ProcessResult runProcess(const std::vector<std::string>& argv, const fs::path& workDir, const fs::path& logFile,
                          const std::vector<std::string>& env, double timeoutSeconds) {
     // environment: ours, with 'env' replacing or adding entries

@@ -15,6 +15,7 @@
 // applied before the other overrides of a combination.
 #pragma once
 
+#include "Case.hpp"
 #include "Dictionary.hpp"
 
 #include <filesystem>
@@ -90,10 +91,6 @@ bool hasPath(const Dictionary& dict, const std::string& path);
 const Dictionary* findPath(const Dictionary& dict, const std::string& path); // a sub-dictionary
 // Replaces the sub-dictionary at 'path' by 'replacement'.
 void setDictPath(Dictionary& dict, const std::string& path, const Dictionary& replacement);
-
-// Copies a case's input (everything but time directories, postProcessing/, logs, .pvd files,
-// images and temporary files) into 'target' (created, must not exist).
-void copyCaseInput(const std::filesystem::path& source, const std::filesystem::path& target);
 
 // Runs argv in 'workDir' with stdout and stderr to 'logFile', extra environment 'env'
 // (NAME=value), in its own process group; after 'timeoutSeconds' (0 = none) the group is
