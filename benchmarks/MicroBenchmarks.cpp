@@ -5,7 +5,7 @@
 #include "Log.hpp"
 #include "ModelRegistry.hpp"
 #include "Simulation.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 
 #include <benchmark/benchmark.h>
 #include <algorithm>
@@ -16,7 +16,7 @@ using namespace spindrift;
 namespace {
 
 struct Scene {
-    SphSystem s;
+    Scene s;
     std::unique_ptr<Kernel> kernel;
     std::vector<std::unique_ptr<Dictionary>> dicts;
 

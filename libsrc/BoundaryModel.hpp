@@ -1,7 +1,10 @@
-// Spindrift — boundary model interface (plugins/boundary).
-// initialise() runs once the wall particles exist (e.g. computes their volumes and sets
-// system.boundaryMass); update() runs every evaluation after the fluid density is known
-// (e.g. to extrapolate wall pressure).
+// Spindrift — boundary model interface (plugins/boundary): how wall particles act on the fluid.
+// initialise() runs once every wall system exists, before the pressure model's: it gives each
+// wall its particles' masses M_b and says whether the wall mirrors the fluid's pressure or has
+// its own (WallSystem::mass, pressureMirrored, viscousVelocity). update() runs at every
+// evaluation once the fluid's density and pressure are known (after computeDensity), e.g. to
+// extrapolate the walls' pressure; pressure solvers that change the fluid's pressure in their
+// iterations call updatePressure() to carry the change to the walls.
 #pragma once
 
 #include "ModelContext.hpp"
@@ -11,8 +14,9 @@ namespace spindrift {
 class BoundaryModel {
 public:
     virtual ~BoundaryModel() = default;
-    virtual void initialise(SphSystem& system) = 0;
-    virtual void update(SphSystem&) {}
+    virtual void initialise(Scene& scene) = 0;
+    virtual void update(Scene&) {}
+    virtual void updatePressure(Scene&, const std::vector<Scalar>& /*fluidPressure*/) {}
 };
 
 } // namespace spindrift

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "Dictionary.hpp"
-#include "SphSystem.hpp"
+#include "Scene.hpp"
 
 #include <filesystem>
 

@@ -1,8 +1,8 @@
 // Spindrift — case output: VTK XML PolyData per set and time, .pvd collection at the root.
 //
 // File layout (see CaseWriter.hpp):
-//   <case>/<time>/fluid.vtp, <case>/<time>/boundary.vtp (when walls were written that time),
-//   <case>/<caseName>.pvd listing every complete time with relative paths.
+//   <case>/<time>/fluid.vtp, <case>/<time>/<wall>.vtp (each wall system written that time),
+//   <case>/<caseName>.pvd listing every complete time with relative paths, a part per system.
 // Arrays in a .vtp: points = positions; point data "id" (vtkTypeUInt32Array, i.e. VTK's
 // "UInt32", the type of Index), then the selected scalar (1 component) and vector
 // (3 components) fields as vtkDoubleArray (vtkFloatArray with SPINDRIFT_SINGLE_PRECISION);
@@ -12,6 +12,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 
 #include <vtkCellArray.h>
 #include <vtkCommand.h>
@@ -34,6 +35,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -78,6 +80,7 @@ private:
 
 bool selected(const std::string& name, const FieldOptions& options,
               const std::vector<std::string>& fieldNames) {
+    if (options.scratch) return false;
     if (options.restart) return true;
     if (fieldNames.empty()) return options.output;
     return std::find(fieldNames.begin(), fieldNames.end(), name) != fieldNames.end();
@@ -354,15 +357,23 @@ std::vector<std::pair<double, std::string>> CaseWriter::existingTimes() const {
     return times;
 }
 
+namespace {
+// The wall systems a time directory holds: its .vtp files but fluid.vtp, sorted.
+std::vector<std::string> wallFilesIn(const fs::path& dir) {
+    std::vector<std::string> walls;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path& f = it->path();
+        if (f.extension() == ".vtp" && f.stem() != "fluid") walls.push_back(f.stem().string());
+    }
+    std::sort(walls.begin(), walls.end());
+    return walls;
+}
+} // namespace
+
 void CaseWriter::scan() {
     times_.clear();
-    boundaryTimeName_.clear();
-    for (auto& [value, name] : existingTimes()) {
-        std::error_code ec;
-        const bool boundary = fs::is_regular_file(caseDir_ / name / "boundary.vtp", ec);
-        if (boundary) boundaryTimeName_ = name;
-        times_.push_back({value, name, boundary});
-    }
+    for (auto& [value, name] : existingTimes()) times_.push_back({value, name, wallFilesIn(caseDir_ / name)});
     scanned_ = true;
 }
 
@@ -385,7 +396,7 @@ void maybeKillDuringWrite() {
 }
 } // namespace
 
-void CaseWriter::write(double time, const ParticleSet& fluid, const ParticleSet* boundary,
+void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<const ParticleSet*>& walls,
                        const std::vector<std::string>& fieldNames,
                        const std::vector<std::pair<std::string, std::string>>& extraFiles) {
     if (!scanned_) scan();
@@ -403,17 +414,21 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const ParticleSet*
         throw std::runtime_error("cannot create '" + tmpDir.string() + "': " +
                                  (ec ? ec.message() : std::string("it exists")));
 
-    bool hasBoundary = boundary != nullptr;
+    std::vector<std::string> wallNames;
     try {
         writeVtp(tmpDir / "fluid.vtp", fluid, fieldNames);
-        if (boundary) {
-            writeVtp(tmpDir / "boundary.vtp", *boundary, fieldNames);
-        } else if (fs::is_regular_file(finalDir / "boundary.vtp", ec)) {
-            // Rewriting a time that held the (static) walls: keep them, later times refer
-            // to them.
-            fs::copy_file(finalDir / "boundary.vtp", tmpDir / "boundary.vtp");
-            hasBoundary = true;
+        for (const ParticleSet* w : walls) {
+            writeVtp(tmpDir / (w->name() + ".vtp"), *w, fieldNames);
+            wallNames.push_back(w->name());
         }
+        // Rewriting a time that held fixed walls not written now: keep them, later times
+        // refer to them.
+        for (const std::string& old : wallFilesIn(finalDir))
+            if (std::find(wallNames.begin(), wallNames.end(), old) == wallNames.end()) {
+                fs::copy_file(finalDir / (old + ".vtp"), tmpDir / (old + ".vtp"));
+                wallNames.push_back(old);
+            }
+        std::sort(wallNames.begin(), wallNames.end());
         for (const auto& [relative, content] : extraFiles) {
             const fs::path file = tmpDir / relative;
             fs::create_directories(file.parent_path());
@@ -445,16 +460,13 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const ParticleSet*
     double value = 0;
     if (!parseTimeName(name, value)) value = time;
     std::erase_if(times_, [&](const TimeEntry& e) { return e.name == name; });
-    TimeEntry entry{value, name, hasBoundary};
+    TimeEntry entry{value, name, wallNames};
     auto pos = std::upper_bound(times_.begin(), times_.end(), entry,
                                 [](const TimeEntry& a, const TimeEntry& b) {
                                     return a.value < b.value ||
                                            (a.value == b.value && a.name < b.name);
                                 });
     times_.insert(pos, entry);
-    // boundaryTimeName_ = newest time holding walls (rewriting an older time keeps it).
-    for (const auto& e : times_)
-        if (e.hasBoundary) boundaryTimeName_ = e.name;
 
     writeCollection();
 }
@@ -464,14 +476,22 @@ void CaseWriter::writeCollection() const {
     s << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
-    const std::string* lastBoundary = nullptr; // newest boundary.vtp at or before each time
+    // every wall system ever written gets a part of its own, in name order; at each time it
+    // shows the newest <wall>.vtp at or before that time
+    std::map<std::string, std::string> newest; // wall -> time directory
+    for (const auto& e : times_)
+        for (const auto& w : e.walls) newest.emplace(w, "");
     for (const auto& e : times_) {
-        if (e.hasBoundary) lastBoundary = &e.name;
+        for (const auto& w : e.walls) newest[w] = e.name;
         s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"0\" file=\""
           << e.name << "/fluid.vtp\" name=\"fluid\"/>\n";
-        if (lastBoundary)
-            s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"1\" file=\""
-              << *lastBoundary << "/boundary.vtp\" name=\"boundary\"/>\n";
+        int part = 1;
+        for (const auto& [wall, dir] : newest) {
+            if (!dir.empty())
+                s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"" << part << "\" file=\""
+                  << dir << "/" << wall << ".vtp\" name=\"" << wall << "\"/>\n";
+            ++part;
+        }
     }
     s << "  </Collection>\n"
       << "</VTKFile>\n";

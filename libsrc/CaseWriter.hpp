@@ -1,5 +1,6 @@
-// Spindrift — output of a case: one directory per written time holding fluid.vtp (and
-// boundary.vtp for walls), plus <caseName>.pvd at the case root listing every complete time.
+// Spindrift — output of a case: one directory per written time holding a .vtp file per
+// particle system (fluid.vtp, and <wall>.vtp for each wall system written that time), plus
+// <caseName>.pvd at the case root listing every complete time, one block (part) per system.
 //
 // Files are VTK XML PolyData, binary appended, written with the VTK library; points are the
 // particle positions (one vertex cell per particle), point-data arrays are the set's fields.
@@ -29,14 +30,14 @@ public:
     // (0 -> "0", 0.05 -> "0.05", 1e-05 -> "1e-05", 1.25 -> "1.25").
     static std::string timeName(double time, int precision = 6);
 
-    // Writes <caseDir>/<timeName(time)>/fluid.vtp and, when 'boundary' is given,
-    // boundary.vtp, then rewrites the .pvd. A boundary written once (static walls) is referenced
-    // from every later time: pass boundary = nullptr and the .pvd points to the last
-    // boundary.vtp written. 'fieldNames': arrays to write besides 'id' (empty = every field
-    // flagged output); fields flagged restart are always written.
+    // Writes <caseDir>/<timeName(time)>/fluid.vtp and <name>.vtp for each of 'walls' (named by
+    // their sets), then rewrites the .pvd. A wall written once (a fixed wall) is referenced from
+    // every later time: the .pvd points each wall's block to the newest <name>.vtp at or before
+    // each time. 'fieldNames': arrays to write besides 'id' (empty = every field flagged
+    // output); fields flagged restart are always written, scratch fields never.
     // 'extraFiles': further files written into the time directory before it is renamed
     // (relative path, content), e.g. uniform/time with the exact time and step for restarts.
-    void write(double time, const ParticleSet& fluid, const ParticleSet* boundary,
+    void write(double time, const ParticleSet& fluid, const std::vector<const ParticleSet*>& walls,
                const std::vector<std::string>& fieldNames = {},
                const std::vector<std::pair<std::string, std::string>>& extraFiles = {});
 
@@ -52,16 +53,15 @@ public:
 
 private:
     struct TimeEntry {
-        double value;     // the time name's numeric value
-        std::string name; // directory name
-        bool hasBoundary; // holds boundary.vtp
+        double value;                   // the time name's numeric value
+        std::string name;               // directory name
+        std::vector<std::string> walls; // the wall systems it holds (<name>.vtp), sorted
     };
-    void scan();                  // fills times_ and boundaryTimeName_ from the case directory
+    void scan();                  // fills times_ from the case directory
     void writeCollection() const; // writes the .pvd from times_
 
     std::filesystem::path caseDir_;
     int precision_;
-    std::string boundaryTimeName_; // time directory holding the last written boundary.vtp
     std::vector<TimeEntry> times_; // complete times, sorted (scanned once, then kept up to date)
     bool scanned_ = false;
 };

@@ -16,10 +16,10 @@ class FunctionObject {
 public:
     virtual ~FunctionObject() = default;
     // Called once after set-up, with the start time (the output folder's name).
-    virtual void start(const SphSystem&, double startTime) { (void)startTime; }
+    virtual void start(const Scene&, double startTime) { (void)startTime; }
     // Called after each step; 'writeTime' is true when the solver writes a time directory.
-    virtual void execute(const SphSystem& system, bool writeTime) = 0;
-    virtual void end(const SphSystem&) {}
+    virtual void execute(const Scene& system, bool writeTime) = 0;
+    virtual void end(const Scene&) {}
 };
 
 // postProcessing/<name>/<startTimeName>/<fileName>: a '#'-header line then one row per call.

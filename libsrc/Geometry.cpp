@@ -53,7 +53,7 @@ int faceIndex(const std::string& face) {
 
 } // namespace
 
-SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
+SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, const Vec3& gravity) {
     SampledGeometry out;
     std::vector<Box> solids;
     std::vector<std::pair<std::string, Box>> containers;
@@ -66,7 +66,12 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
             const int layers = w.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
             const Scalar L = layers * dx;
-            const std::size_t before = out.wallPositions.size();
+            if (name == "fluid")
+                throw InputError(walls->locationOf(name), "a wall may not be called 'fluid' (the fluid's own "
+                                                          "output is fluid.vtp)", name);
+            out.walls.push_back({name, {}, w.findDict("motion")});
+            w.markUsed("motion");
+            std::vector<Vec3>& wallPositions = out.walls.back().positions;
             if (type == "container") {
                 containers.emplace_back(name, box);
                 bool open[6] = {false, false, false, false, false, false};
@@ -109,7 +114,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
                         if (p[a] < lo[a] && open[2 * a]) outside = false;
                         if (p[a] > hi[a] && open[2 * a + 1]) outside = false;
                     }
-                    if (outside) out.wallPositions.push_back(p);
+                    if (outside) wallPositions.push_back(p);
                 });
             } else { // solid box: outermost layers inside the surface
                 solids.push_back(box);
@@ -117,10 +122,10 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
                     Scalar depth = std::numeric_limits<Scalar>::max();
                     for (int a = 0; a < dim; ++a)
                         depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
-                    if (depth < L) out.wallPositions.push_back(p);
+                    if (depth < L) wallPositions.push_back(p);
                 });
             }
-            if (out.wallPositions.size() == before)
+            if (wallPositions.empty())
                 throw InputError(w.where(), "wall '" + name + "' produced no particles (is it smaller than particleSpacing?)");
             w.checkAllKeywordsUsed();
         }
@@ -175,12 +180,23 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
         }
         Vec3 velocity = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
         if (dim == 2) velocity[2] = 0;
+        // the top of the block along gravity: the highest of its corners
+        const Scalar g = gravity.norm();
+        const Vec3 up = g > 0 ? Vec3(-gravity / g) : Vec3::Zero();
+        Scalar top = -std::numeric_limits<Scalar>::max();
+        for (int corner = 0; corner < (1 << dim); ++corner) {
+            Vec3 c = box.min;
+            for (int a = 0; a < dim; ++a)
+                if (corner & (1 << a)) c[a] = box.max[a];
+            top = std::max(top, up.dot(c));
+        }
         const std::size_t before = out.fluidPositions.size();
         forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
             for (const auto& s : solids)
                 if (s.contains(p, dim)) return;
             out.fluidPositions.push_back(p);
             out.fluidVelocities.push_back(velocity);
+            out.fluidDepths.push_back(g > 0 ? top - up.dot(p) : Scalar(0));
         });
         if (out.fluidPositions.size() == before)
             throw InputError(f.where(), "fluid block '" + name + "' produced no particles (is it smaller than particleSpacing, or inside a wall?)");
@@ -189,11 +205,14 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim) {
     geometry.checkAllKeywordsUsed();
 
     Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::max()), hi = -lo;
-    for (const auto* set : {&out.fluidPositions, &out.wallPositions})
-        for (const auto& p : *set) {
+    const auto include = [&](const std::vector<Vec3>& points) {
+        for (const auto& p : points) {
             lo = lo.cwiseMin(p);
             hi = hi.cwiseMax(p);
         }
+    };
+    include(out.fluidPositions);
+    for (const auto& w : out.walls) include(w.positions);
     if (dim == 2) lo[2] = hi[2] = 0;
     out.boundsMin = lo;
     out.boundsMax = hi;

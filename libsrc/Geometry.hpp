@@ -3,32 +3,44 @@
 //
 //   fluid { <name> { type box; min (..); max (..); velocity (0 0 0); } ... }
 //   walls { <name> { type container; min (..); max (..); layers 3; open (yMax); }   // hollow box
-//           <name> { type box; min (..); max (..); layers 3; } ... }                // solid block
+//           <name> { type box; min (..); max (..); layers 3;                        // solid block
+//                    motion { type linear; velocity (0.5 0 0); } } ... }           // optional (Motion.hpp)
 //   periodic { x (0 1); }   // optional: axis (min max); leaving at max re-enters at min
 //
 // Fluid particles sit at min + (i + ½)Δx. A container's wall particles continue that lattice
 // outwards: layer k of a face lies (k + ½)Δx outside it, so the effective wall is the face
 // itself. A solid box keeps the `layers` outermost lattice layers inside its surface. Fluid
-// particles inside a solid wall are removed. Room for cylinders, spheres and STL later: each
-// shape is one `type`.
+// particles inside a solid wall are removed. Each wall entry is a wall system of its own, named
+// after the entry. Room for cylinders, spheres and STL later: each shape is one `type`.
 #pragma once
 
 #include "Dictionary.hpp"
 #include "NeighbourSearch.hpp"
 #include "Types.hpp"
 
+#include <string>
 #include <vector>
 
 namespace spindrift {
 
+struct SampledWall {
+    std::string name;
+    std::vector<Vec3> positions;
+    const Dictionary* motion = nullptr; // the entry's `motion { }`, read by the caller (Motion::read)
+};
+
 struct SampledGeometry {
     std::vector<Vec3> fluidPositions;
     std::vector<Vec3> fluidVelocities;
-    std::vector<Vec3> wallPositions;
+    // each fluid particle's depth below the top of its block, along gravity (0 without gravity):
+    // the hydrostatic start gives it p = ρ0 |g| depth
+    std::vector<Scalar> fluidDepths;
+    std::vector<SampledWall> walls;
     Vec3 boundsMin = Vec3::Zero(), boundsMax = Vec3::Zero(); // of everything sampled
     Periodicity periodic;
 };
 
-SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar spacing, int dimension);
+SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar spacing, int dimension,
+                               const Vec3& gravity = Vec3::Zero());
 
 } // namespace spindrift

@@ -1,11 +1,13 @@
 // Spindrift — time integrator interface (plugins/integrators).
 //
-// step() advances fluid positions and velocities by dt. It calls evaluate() whenever it needs
-// accelerations at the current positions and velocities: evaluate() rebuilds the neighbour
-// lists and fills fluid.acceleration() (density, boundary, non-pressure, pressure). So
-// multi-stage and multi-step schemes fit one interface. Per-particle state that must survive
-// between steps (history) lives in fields registered on the fluid set in initialise(), so it
-// is re-sorted with the particles and written for restarts.
+// step() advances fluid positions and velocities by dt. It calls evaluate(t) whenever it needs
+// accelerations at the current positions and velocities, t being the time of that state (moving
+// walls are placed there): evaluate() rebuilds the neighbour lists and fills fluid.acceleration()
+// (density, boundary, non-pressure, pressure). So multi-stage and multi-step schemes fit one
+// interface. Per-particle state that must survive between steps (history) lives in fields
+// registered on the fluid set in initialise(), so it is re-sorted with the particles and written
+// for restarts. applies() says which results (ModelContext.hpp: ResultKind) the scheme applies
+// exactly; the core refuses a model whose result the integrator cannot apply.
 #pragma once
 
 #include "ModelContext.hpp"
@@ -16,13 +18,44 @@ namespace spindrift {
 
 class Integrator {
 public:
-    using Evaluate = std::function<void()>;
+    using Evaluate = std::function<void(double time)>;
     virtual ~Integrator() = default;
-    virtual void initialise(SphSystem&) {}
-    // The state (every restart field, system.step and system.time) was just read from a time
+    virtual void initialise(Scene&) {}
+    // The state (every restart field, scene.step and scene.time) was just read from a time
     // directory: restore any non-field state so the run continues as if never interrupted.
-    virtual void restarted(SphSystem&) {}
-    virtual void step(SphSystem& system, Scalar dt, const Evaluate& evaluate) = 0;
+    virtual void restarted(Scene&) {}
+    virtual void step(Scene& scene, Scalar dt, const Evaluate& evaluate) = 0;
+    virtual bool applies(ResultKind kind) const { return kind == ResultKind::acceleration; }
 };
+
+// The integrators that take the accelerations evaluated at the end of one step as the next
+// step's a_n (leapfrog, velocityVerlet, pereaCordero: one evaluation a step). At the first step,
+// and after a restart from step 0, they evaluate first; after a later restart the accelerations
+// come back with the other restart fields.
+class CarriedAccelerationIntegrator : public Integrator {
+public:
+    void restarted(Scene& s) override { haveAcceleration_ = s.step > 0; }
+
+protected:
+    // Evaluates a_n at the start of the step unless the last step left it.
+    void startStep(const Scene& s, const Evaluate& evaluate) {
+        if (!haveAcceleration_) evaluate(s.time);
+    }
+    // Evaluates at the step's end state (time t + Δt); it is the next step's a_n.
+    void evaluateAtEnd(const Scene& s, Scalar dt, const Evaluate& evaluate) {
+        evaluate(s.time + dt);
+        haveAcceleration_ = true;
+    }
+
+private:
+    bool haveAcceleration_ = false;
+};
+
+// f(i) for every fluid particle, in parallel: the integrators' kick and drift loops.
+template <class F> void forEachFluidParticle(const Scene& s, F&& f) {
+    const std::size_t n = s.fluid.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) f(i);
+}
 
 } // namespace spindrift

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "Dictionary.hpp"
-#include "SphSystem.hpp"
+#include "Scene.hpp"
 
 #include <filesystem>
 #include <memory>
@@ -16,6 +16,16 @@ struct ModelContext {
     std::filesystem::path caseDirectory = {}; // the case (function objects write below it)
     std::string name = {};             // the entry's name, e.g. "frontPosition" in functions { }
 };
+
+// What a pressure or force model's result is. Every model adds its result to
+// fluid.acceleration(); it declares what that is:
+//   acceleration    a true acceleration (force per mass): every integrator applies it;
+//   velocityChange  a change of velocity Δv over the step, added as Δv/Δt (xsph, dfsph);
+//   positionChange  a change of position Δx over the step, added as Δx/Δt² (pbf, relaxedPbf).
+// The last two are exact only with the integrator the methods are formulated with,
+// symplecticEuler (v += Δt a, then x += Δt v); the core refuses other pairings at set-up,
+// naming both models (Integrator::applies).
+enum class ResultKind { acceleration, velocityChange, positionChange };
 
 // The factory every plugin exports (see Plugin.hpp).
 template <class Base> using Factory = std::unique_ptr<Base>(const ModelContext&);

@@ -1,4 +1,5 @@
 #include "NeighbourSearch.hpp"
+#include "ParticleSet.hpp" // permuteVector
 
 #include <cmath>
 #include <limits>
@@ -150,31 +151,43 @@ void NeighbourSearch::setup(Scalar radius, int dimension, const Vec3& domainMin,
     radius_ = radius;
     dim_ = dimension;
     periodic_ = periodic;
+    domainMin_ = domainMin;
+    domainMax_ = domainMax;
     fluidGrid_.setup(radius, dimension, domainMin, domainMax, periodic);
-    boundaryGrid_.setup(radius, dimension, domainMin, domainMax, periodic);
+    walls_.clear();
 }
 
-void NeighbourSearch::setBoundary(const std::vector<Vec3>& boundaryPoints) {
-    boundaryPoints_ = boundaryPoints;
-    boundaryGrid_.build(boundaryPoints_);
+void NeighbourSearch::setWalls(const std::vector<WallSource>& walls) {
+    if (int(walls.size()) + 1 > maxLists)
+        throw std::runtime_error("neighbour search: at most " + std::to_string(maxLists - 1) + " wall systems");
+    walls_.clear();
+    walls_.resize(walls.size());
+    for (std::size_t k = 0; k < walls.size(); ++k) {
+        Wall& w = walls_[k];
+        w.points = walls[k].positions;
+        w.moving = walls[k].moving;
+        w.grid.setup(radius_, dim_, domainMin_, domainMax_, periodic_);
+        w.grid.build(*w.points);
+    }
 }
 
-// Fills the fluid–fluid list, and the fluid–wall one when 'walls', for n fluid points in one
-// parallel region: gather(list, i, reserve) → count writes point i's neighbours in list 0
-// (fluid) or 1 (walls) to the array reserve(room) gives it. Each thread takes its block of
-// points (searchRange) in chunks, and then what is left of the others' (claimChunk), writing
-// the rows into its own buffers (kept between calls); then each copies its chunks to their
-// place in the lists, so the lists do not depend on the thread count, the split or who took
-// what. The first thread writes its leading chunks straight into the lists, where they go.
+// Fills the fluid–fluid list and the fluid–wall list of every wall system for n fluid points in
+// one parallel region: gather(list, i, reserve) → count writes point i's neighbours in list 0
+// (fluid) or 1 + k (wall system k) to the array reserve(room) gives it. Each thread takes its
+// block of points (searchRange) in chunks, and then what is left of the others' (claimChunk),
+// writing the rows into its own buffers (kept between calls); then each copies its chunks to
+// their place in the lists, so the lists do not depend on the thread count, the split or who
+// took what. The first thread writes its leading chunks straight into the lists, where they go.
 // A thread's time (gather and copy) and the pairs it gathered update the split of the next
 // build. (Each thread copies its own rows: the passes then find them in its cache.)
-template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool walls, Gather&& gather) {
+template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, int listCount, Gather&& gather) {
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
 #endif
-    NeighbourList* lists[2] = {&fluidFluid_, &fluidBoundary_};
-    const int listCount = walls ? 2 : 1;
+    NeighbourList* lists[maxLists];
+    lists[0] = &fluidFluid_;
+    for (int l = 1; l < listCount; ++l) lists[l] = &walls_[std::size_t(l - 1)].fluidWall;
     const bool timed = threads > 1 && threads == int(searchRanges_.size()) - 1 && searchRanges_.back() == n;
     std::vector<std::size_t> first(threads + 1);
     for (int t = 0; t <= threads; ++t) first[t] = timed ? searchRanges_[t] : n * t / threads;
@@ -183,7 +196,7 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
         lists[k]->offsets.resize(n + 1);
         lists[k]->offsets[0] = 0;
     }
-    if (int(threadBuffers_.size()) < 2 * threads) threadBuffers_.resize(2 * threads);
+    if (int(threadBuffers_.size()) < maxLists * threads) threadBuffers_.resize(std::size_t(maxLists * threads));
     if (int(threadChunks_.size()) < threads) threadChunks_.resize(threads);
     if (int(cursors_.size()) < threads) cursors_.resize(threads);
     const std::uint32_t region = beginRegion();
@@ -198,7 +211,7 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
         // 1. the thread gathers its chunks; the offsets count in its buffers
         std::vector<GatherChunk>& chunks = threadChunks_[t];
         chunks.clear();
-        std::size_t used[2] = {0, 0}, inPlaceUsed[2] = {0, 0}, inPlaceEnd = 0;
+        std::size_t used[maxLists] = {}, inPlaceUsed[maxLists] = {}, inPlaceEnd = 0;
         for (int k = 0; k < threads; ++k) { // its own block first, then the others'
             const int owner = (t + k) % threads;
             for (auto [a, b] = claimChunk(owner, first[owner], first[owner + 1], region); a < b;
@@ -206,7 +219,7 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
                 GatherChunk chunk{a, b, {}, {}, {}, t == 0 && a == inPlaceEnd};
                 for (int l = 0; l < listCount; ++l) {
                     NeighbourList& list = *lists[l];
-                    std::vector<Index>& buffer = chunk.inPlace ? list.indices : threadBuffers_[2 * t + l];
+                    std::vector<Index>& buffer = chunk.inPlace ? list.indices : threadBuffers_[maxLists * t + l];
                     std::size_t& size = chunk.inPlace ? inPlaceUsed[l] : used[l];
                     auto reserve = [&](std::size_t room) {
                         if (size + room > buffer.size()) buffer.resize(std::max(2 * buffer.size(), size + room));
@@ -254,7 +267,7 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
             if (c.inPlace) continue;
             for (int l = 0; l < listCount; ++l) {
                 NeighbourList& list = *lists[l];
-                const std::vector<Index>& buffer = threadBuffers_[2 * t + l];
+                const std::vector<Index>& buffer = threadBuffers_[maxLists * t + l];
                 std::copy(buffer.begin() + c.start[l], buffer.begin() + c.end[l], list.indices.begin() + c.target[l]);
                 const std::uint32_t shift = std::uint32_t(c.target[l] - c.start[l]); // modulo 2^32
                 for (std::size_t i = c.first; i < c.last; ++i) list.offsets[i + 1] += shift;
@@ -271,39 +284,60 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, bool wa
     }
 }
 
-void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
+void NeighbourSearch::buildLists(const std::vector<Vec3>& fluid) {
     ++builds_;
     fluidGrid_.build(fluid);
+    for (Wall& w : walls_)
+        if (w.moving) w.grid.build(*w.points);
     const Periodicity* periodic = periodic_.any() ? &periodic_ : nullptr;
-    fluidFluid_.periodic = fluidBoundary_.periodic = periodic;
-    const bool walls = !boundaryPoints_.empty();
+    fluidFluid_.periodic = periodic;
+    for (Wall& w : walls_) w.fluidWall.periodic = periodic;
     if (periodic) {
         buildNeighbourList(fluid.size(), fluidFluid_, [&](std::size_t i, auto&& push) {
             fluidGrid_.forEachWithin(fluid[i], fluid, radius_, [&](Index j) {
                 if (j != i) push(j);
             });
         });
-        if (walls)
-            buildNeighbourList(fluid.size(), fluidBoundary_, [&](std::size_t i, auto&& push) {
-                boundaryGrid_.forEachWithin(fluid[i], boundaryPoints_, radius_, push);
+        for (Wall& w : walls_)
+            buildNeighbourList(fluid.size(), w.fluidWall, [&](std::size_t i, auto&& push) {
+                w.grid.forEachWithin(fluid[i], *w.points, radius_, push);
             });
     } else {
         const Scalar r2 = radius_ * radius_;
         constexpr Index none = std::numeric_limits<Index>::max();
-        gatherLists(fluid.size(), walls, [&](int list, std::size_t i, auto&& reserve) {
+        gatherLists(fluid.size(), 1 + int(walls_.size()), [&](int list, std::size_t i, auto&& reserve) {
             return list == 0 ? fluidGrid_.gatherWithin(fluid[i], r2, Index(i), reserve)
-                             : boundaryGrid_.gatherWithin(fluid[i], r2, none, reserve);
+                             : walls_[std::size_t(list - 1)].grid.gatherWithin(fluid[i], r2, none, reserve);
         });
     }
-    if (!walls) {
-        fluidBoundary_.offsets.assign(fluid.size() + 1, 0);
-        fluidBoundary_.indices.clear();
-    }
+    countWallPairs();
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
 #endif
     balanceWork(threads);
+}
+
+void NeighbourSearch::countWallPairs() {
+    const std::size_t n = fluidFluid_.size();
+    wallPairsBefore_.assign(n + 1, 0);
+    for (const Wall& w : walls_) {
+        const std::uint32_t* offsets = w.fluidWall.offsets.data();
+        std::uint32_t* before = wallPairsBefore_.data();
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i <= n; ++i) before[i] += offsets[i];
+    }
+}
+
+void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
+    builtAhead_ = false;
+    buildLists(fluid);
+}
+
+void NeighbourSearch::buildAhead(const std::vector<Vec3>& predicted) {
+    buildLists(predicted);
+    aheadPoints_ = predicted;
+    builtAhead_ = true;
 }
 
 void NeighbourSearch::ThreadSpeeds::update(int threads) {
@@ -410,8 +444,13 @@ void NeighbourSearch::permute(const std::vector<Index>& order) {
         list.indices.swap(scratch);
     };
     permuteRows(fluidFluid_, [&](Index j) { return newIndexOf[j]; });
-    permuteRows(fluidBoundary_, std::identity{}); // wall particles keep their numbers
+    for (Wall& w : walls_) {
+        permuteRows(w.fluidWall, std::identity{}); // wall particles keep their numbers
+        w.wallFluidBuild = -1;                     // its rows name fluid particles
+    }
     fluidGrid_.relabel(newIndexOf);
+    if (builtAhead_) permuteVector(aheadPoints_, order);
+    countWallPairs();
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
@@ -419,15 +458,41 @@ void NeighbourSearch::permute(const std::vector<Index>& order) {
     balanceWork(threads);
 }
 
-NeighbourList NeighbourSearch::boundaryBoundaryList() const {
+NeighbourList NeighbourSearch::wallWallList(std::size_t k, std::size_t l) const {
     NeighbourList list;
     list.periodic = periodic_.any() ? &periodic_ : nullptr;
-    buildNeighbourList(boundaryPoints_.size(), list, [&](std::size_t i, auto&& push) {
-        boundaryGrid_.forEachWithin(boundaryPoints_[i], boundaryPoints_, radius_, [&](Index j) {
-            if (j != i) push(j);
+    const std::vector<Vec3>& from = *walls_[k].points;
+    const std::vector<Vec3>& to = *walls_[l].points;
+    const UniformGrid& grid = walls_[l].grid;
+    buildNeighbourList(from.size(), list, [&](std::size_t i, auto&& push) {
+        grid.forEachWithin(from[i], to, radius_, [&](Index j) {
+            if (k != l || j != i) push(j);
         });
     });
     return list;
+}
+
+const NeighbourList& NeighbourSearch::wallFluidNeighbours(std::size_t k) const {
+    const Wall& w = walls_[k];
+    if (w.wallFluidBuild != builds_) {
+        w.wallFluid = transposeList(w.fluidWall, w.points->size());
+        w.wallFluid.periodic = w.fluidWall.periodic;
+        w.wallFluidBuild = builds_;
+    }
+    return w.wallFluid;
+}
+
+NeighbourList transposeList(const NeighbourList& list, std::size_t columns) {
+    NeighbourList t;
+    t.offsets.assign(columns + 1, 0);
+    const std::size_t rows = list.size();
+    for (Index c : list.indices) ++t.offsets[std::size_t(c) + 1];
+    for (std::size_t c = 0; c < columns; ++c) t.offsets[c + 1] += t.offsets[c];
+    t.indices.resize(list.indices.size());
+    std::vector<std::uint32_t> next(t.offsets.begin(), t.offsets.end() - 1);
+    for (std::size_t i = 0; i < rows; ++i) // rows in ascending order: each column's row ascends
+        for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) t.indices[next[*it]++] = Index(i);
+    return t;
 }
 
 } // namespace spindrift

@@ -14,9 +14,12 @@
 // Lists are compact (CSR): for particle i, indices[offsets[i] .. offsets[i+1]) excluding i.
 // The grid keeps its points in cell order as a structure of arrays, so the per-step list
 // build scans contiguous memory without branches (gatherWithin); in one parallel region each
-// thread fills its own persistent buffers, fluid and wall, for chunks of its block of particles.
-// Fluid–fluid and fluid–boundary lists are rebuilt each step; the static boundary grid is
-// built once and boundary–boundary pairs are never searched during the run.
+// thread fills its own persistent buffers, one a list, for chunks of its block of particles.
+// The search serves the fluid and every wall system (setWalls): the fluid–fluid list and one
+// fluid–wall list per wall system are rebuilt each step; a fixed wall's grid is built once, a
+// moving wall's at every build, and wall–wall pairs are never searched during the run (only on
+// demand at set-up, wallWallList). A wall's fluid neighbours (the transpose of its list) are
+// made on demand, for boundary models that sum over the fluid around each wall particle.
 // sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
 // the particle arrays every few steps for cache locality.
 // Pair loops run on thread ranges of equal work (workRange), split by the threads' measured
@@ -292,15 +295,34 @@ private:
 
 class NeighbourSearch {
 public:
+    // At most this many lists a build (the fluid's own and one per wall system).
+    static constexpr int maxLists = 16;
+
     // radius = kernel support h; domain = box the particles are expected to stay in.
     void setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax,
                const Periodicity& periodic = {});
     const Periodicity& periodicity() const { return periodic_; }
-    // Static boundary points: their grid is built once, here.
-    void setBoundary(const std::vector<Vec3>& boundaryPoints);
 
-    // Rebuilds fluid–fluid and fluid–boundary lists for the current fluid positions.
+    // The wall systems whose particles the fluid interacts with, in order (wall k's list is
+    // wallNeighbours(k)). The search reads the positions through the pointers at every build:
+    // a static wall's grid is built once, here; a moving wall's at every build.
+    struct WallSource {
+        const std::vector<Vec3>* positions;
+        bool moving;
+    };
+    void setWalls(const std::vector<WallSource>& walls);
+    std::size_t wallCount() const { return walls_.size(); }
+
+    // Rebuilds the fluid–fluid list and the fluid–wall list of every wall system for the current
+    // fluid positions (and the grids of moving walls).
     void build(const std::vector<Vec3>& fluidPoints);
+    // The same, for positions a model predicts the next step to start from (dfsph's check):
+    // the search remembers them, and builtAt() tells whether a later state is exactly there, so
+    // that the step need not search again.
+    void buildAhead(const std::vector<Vec3>& predictedPoints);
+    bool builtAt(const std::vector<Vec3>& fluidPoints) const {
+        return builtAhead_ && fluidPoints == aheadPoints_;
+    }
 
     // Permutation that orders points along the Z-order curve of the grid cells (stable: the
     // points of a cell keep their order).
@@ -311,9 +333,13 @@ public:
     // pair and in the same order, for less than a build costs.
     void permute(const std::vector<Index>& order);
 
-    // Boundary–boundary list (each boundary point's boundary neighbours, self excluded),
-    // computed on demand, e.g. for boundary volumes at set-up.
-    NeighbourList boundaryBoundaryList() const;
+    // Wall system k's particles against wall system l's (each particle's neighbours, itself
+    // excluded when k == l), computed on demand, e.g. for wall volumes at set-up.
+    NeighbourList wallWallList(std::size_t k, std::size_t l) const;
+    // Wall system k's fluid neighbours: the transpose of wallNeighbours(k) (each row in
+    // ascending fluid index, so independent of the thread count), computed on first use after
+    // a build. Not to be called inside a parallel region.
+    const NeighbourList& wallFluidNeighbours(std::size_t k) const;
 
     // Particle ranges of equal pair work for the threads of a parallel region: thread t of T
     // takes [first, last) = workRange(t, T), with about the same number of fluid and wall
@@ -381,25 +407,38 @@ public:
     long builds() const { return builds_; }
 
     const NeighbourList& fluidNeighbours() const { return fluidFluid_; }
-    const NeighbourList& boundaryNeighbours() const { return fluidBoundary_; }
+    const NeighbourList& wallNeighbours(std::size_t k) const { return walls_[k].fluidWall; }
+    // How many wall particles (of every wall system) fluid particle i has in its support.
+    std::uint32_t wallNeighbourCount(std::size_t i) const { return wallPairsBefore_[i + 1] - wallPairsBefore_[i]; }
     const UniformGrid& fluidGrid() const { return fluidGrid_; }
-    const UniformGrid& boundaryGrid() const { return boundaryGrid_; }
+    const UniformGrid& wallGrid(std::size_t k) const { return walls_[k].grid; }
     Scalar radius() const { return radius_; }
-    bool hasBoundary() const { return !boundaryPoints_.empty(); }
 
 private:
     Scalar radius_ = 0;
     int dim_ = 3;
+    Vec3 domainMin_ = Vec3::Zero(), domainMax_ = Vec3::Zero();
     Periodicity periodic_;
-    UniformGrid fluidGrid_, boundaryGrid_;
-    std::vector<Vec3> boundaryPoints_;
-    NeighbourList fluidFluid_, fluidBoundary_;
-    // kept between steps, no allocation per step: [2 t] thread t's fluid neighbours, [2 t + 1] its wall ones
+    UniformGrid fluidGrid_;
+    NeighbourList fluidFluid_;
+    struct Wall {
+        const std::vector<Vec3>* points = nullptr;
+        bool moving = false;
+        UniformGrid grid;
+        NeighbourList fluidWall;               // each fluid particle's neighbours in this wall
+        mutable NeighbourList wallFluid;       // the transpose (on demand)
+        mutable long wallFluidBuild = -1;      // the build it was made for
+    };
+    std::vector<Wall> walls_;
+    std::vector<std::uint32_t> wallPairsBefore_; // Σ_k fluidWall_k.offsets[i]: wall pairs before particle i
+    bool builtAhead_ = false;
+    std::vector<Vec3> aheadPoints_;
+    // kept between steps, no allocation per step: [lists t + l] thread t's rows of list l
     std::vector<std::vector<Index>> threadBuffers_;
     struct GatherChunk {          // particles [first, last) gathered by one thread
         std::size_t first, last;
-        std::size_t start[2], end[2]; // their rows in the thread's buffer (fluid, walls)
-        std::size_t target[2];        // and in the lists
+        std::size_t start[maxLists], end[maxLists]; // their rows in the thread's buffers
+        std::size_t target[maxLists];               // and in the lists
         bool inPlace;                 // gathered straight into the lists (the first thread's leading chunks)
     };
     std::vector<std::vector<GatherChunk>> threadChunks_; // kept between builds
@@ -432,7 +471,7 @@ private:
     static constexpr std::size_t perParticle = 8; // cost of a particle's own work, in pairs
     // Work before particle i: its pairs (fluid and wall, or fluid only) plus perParticle each.
     std::size_t pairWork(std::size_t i, PairWork work) const {
-        return std::size_t(fluidFluid_.offsets[i]) + (work == PairWork::FluidAndWall ? fluidBoundary_.offsets[i] : 0) +
+        return std::size_t(fluidFluid_.offsets[i]) + (work == PairWork::FluidAndWall ? wallPairsBefore_[i] : 0) +
                perParticle * i;
     }
     std::pair<std::size_t, std::size_t> rangeOf(const std::vector<std::size_t>& ranges, int t, int threads) const {
@@ -440,6 +479,8 @@ private:
         if (threads == int(ranges.size()) - 1 && ranges.back() == n) return {ranges[t], ranges[t + 1]};
         return {n * t / threads, n * (t + 1) / threads};
     }
+    void buildLists(const std::vector<Vec3>& fluid);
+    void countWallPairs();
     void balanceWork(int threads);
     // The next chunk of [first, last), the range of thread owner, in region 'region'.
     std::pair<std::size_t, std::size_t> claimChunk(int owner, std::size_t first, std::size_t last,
@@ -456,8 +497,12 @@ private:
         const std::size_t begin = std::size_t(cursor.fetch_add(size, std::memory_order_relaxed) & low);
         return {std::min(begin, last), std::min(begin + size, last)};
     }
-    template <class Gather> void gatherLists(std::size_t n, bool walls, Gather&& gather);
+    template <class Gather> void gatherLists(std::size_t n, int listCount, Gather&& gather);
 };
+
+// The transpose of a list of rows over 'columns' points: row c of the result holds every i
+// whose row holds c, in ascending order (so independent of the thread count).
+NeighbourList transposeList(const NeighbourList& list, std::size_t columns);
 
 // Calls f(i) for every fluid particle i in parallel, each thread over its workRange and then
 // over what is left of the others' (claimChunk): for pair loops over the step's lists

@@ -23,6 +23,7 @@ std::vector<Scalar>& ParticleSet::addScalar(const std::string& name, FieldOption
         if (f->name == name) {
             f->options.output |= options.output;
             f->options.restart |= options.restart;
+            f->options.scratch &= options.scratch;
             return f->data;
         }
     scalars_.push_back(std::make_unique<ScalarField>(ScalarField{name, options, {}}));
@@ -35,6 +36,7 @@ std::vector<Vec3>& ParticleSet::addVector(const std::string& name, FieldOptions 
         if (f->name == name) {
             f->options.output |= options.output;
             f->options.restart |= options.restart;
+            f->options.scratch &= options.scratch;
             return f->data;
         }
     vectors_.push_back(std::make_unique<VectorField>(VectorField{name, options, {}}));
@@ -75,8 +77,10 @@ template <class T> void parallelCopy(std::vector<T>& to, const std::vector<T>& f
 void ParticleSet::copyDataFrom(const ParticleSet& other) {
     particleMass_ = other.particleMass_;
     parallelCopy(id_, other.id_);
-    for (const auto& f : other.scalars_) parallelCopy(addScalar(f->name, f->options), f->data);
-    for (const auto& f : other.vectors_) parallelCopy(addVector(f->name, f->options), f->data);
+    for (const auto& f : other.scalars_)
+        if (!f->options.scratch) parallelCopy(addScalar(f->name, f->options), f->data);
+    for (const auto& f : other.vectors_)
+        if (!f->options.scratch) parallelCopy(addVector(f->name, f->options), f->data);
 }
 
 void ParticleSet::permute(const std::vector<Index>& order) {

@@ -4,7 +4,8 @@
 // further fields on demand (addScalar/addVector), so a scene allocates only what its models
 // use. Fields are reordered together (permute) when particles are re-sorted along the
 // space-filling curve. A field flagged 'output' is written to the VTK files, 'restart' means it
-// must be written (full precision) for a restart to continue bit for bit.
+// must be written (full precision) for a restart to continue bit for bit, 'scratch' that it is
+// a model's working data, re-sorted but never written or snapshot.
 #pragma once
 
 #include "Types.hpp"
@@ -26,8 +27,10 @@ template <class T> void permuteVector(std::vector<T>& v, const std::vector<Index
 }
 
 struct FieldOptions {
-    bool output = true;   // written to fluid.vtp / boundary.vtp
+    bool output = true;   // written to the set's .vtp file
     bool restart = false; // needed to restart (written even when not selected for output)
+    bool scratch = false; // a model's per-particle working data: re-sorted with the particles,
+                          // never written, not kept in the last-good-state snapshot
 };
 
 struct ScalarField {
@@ -81,8 +84,8 @@ public:
     const std::vector<std::unique_ptr<ScalarField>>& scalarFields() const { return scalars_; }
     const std::vector<std::unique_ptr<VectorField>>& vectorFields() const { return vectors_; }
 
-    // Copies every field's data from 'other', which must have the same fields (a snapshot of
-    // this set taken earlier); reuses the allocated storage.
+    // Copies every field's data but the scratch fields from 'other' (a snapshot of this set
+    // taken earlier, or the set to snapshot); reuses the allocated storage.
     void copyDataFrom(const ParticleSet& other);
 
     // Reorders every field: new[i] = old[order[i]].

@@ -1,11 +1,13 @@
 // Spindrift — pressure model interface (plugins/pressure).
 //
 // Called once per force evaluation, never per pair: the model loops over particles and their
-// neighbours itself. computeDensity() runs first (viscosity models may read the density);
-// addPressureAcceleration() then adds the pressure acceleration to fluid.acceleration(),
-// which holds the non-pressure accelerations on entry. Iterative solvers (PCISPH, PBF) run
-// their predict–correct loop inside addPressureAcceleration() on the step's neighbour lists,
-// predicting with the step's Δt; position-based solvers return Δx/Δt² as an acceleration.
+// neighbours through the core's pair loop (PairLoop.hpp). computeDensity() runs first (the
+// boundary and viscosity models may read the density and pressure); addPressureAcceleration()
+// then adds the pressure's result to fluid.acceleration(), which holds the non-pressure
+// accelerations on entry. Iterative solvers (PCISPH, PBF, DFSPH) run their predict–correct loop
+// inside addPressureAcceleration() on the step's neighbour lists, predicting with the step's Δt;
+// what the result is (an acceleration, Δv/Δt or Δx/Δt²) the model declares (result()).
+// Every model writes a pressure in Pa to fluid.pressure(), which probes and walls read.
 #pragma once
 
 #include "ModelContext.hpp"
@@ -15,19 +17,14 @@ namespace spindrift {
 class PressureModel {
 public:
     virtual ~PressureModel() = default;
-    virtual void initialise(SphSystem&) {}
-    virtual void computeDensity(SphSystem& system) = 0;
-    virtual void addPressureAcceleration(SphSystem& system, Scalar dt) = 0;
-    // True when the model's last solve left the neighbour lists (and its density) of exactly
-    // the current fluid positions, so the next evaluation need not search (dfsph's
-    // checkPositions searches at the positions its step leads to).
-    virtual bool searchedAt(const SphSystem&) const { return false; }
-    // The particles are about to be re-sorted (new i = old order[i]) while searchedAt() holds:
-    // the model reorders what it keeps for the next evaluation (the neighbour lists are still
-    // in the old order here; they are relabelled after the fluid).
-    virtual void permute(const SphSystem&, const std::vector<Index>& /*order*/) {}
-    // Numerical sound speed for the CFL limit; 0 for incompressible solvers.
-    virtual Scalar soundSpeed() const { return 0; }
+    // The sound speed c0 [m/s] of the model's equation of state, resolved at set-up before any
+    // model initialises (it goes into Scene::constants); 0 for incompressible solvers.
+    // 'constants' holds everything but the sound speed itself.
+    virtual Scalar soundSpeed(const SceneConstants& /*constants*/, const PhysicalParameters&) const { return 0; }
+    virtual void initialise(Scene&) {}
+    virtual void computeDensity(Scene& scene) = 0;
+    virtual void addPressureAcceleration(Scene& scene, Scalar dt) = 0;
+    virtual ResultKind result() const { return ResultKind::acceleration; }
     virtual SolverStats lastSolve() const { return {}; }
     virtual bool isIterative() const { return false; }
 };

@@ -31,7 +31,7 @@ struct DensityError {
 
 // Compression error (ρ − ρ0)/ρ0 where positive; the density deficit at a free surface is not
 // an error of the pressure solver.
-DensityError densityError(const SphSystem& s) {
+DensityError densityError(const Scene& s) {
     const auto& rho = s.fluid.density();
     const double rho0 = s.physics.rho0;
     const std::size_t n = rho.size();
@@ -68,13 +68,14 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     readRunControls(control);
     checkWritable();
 
-    system_.physics = readPhysicalParameters(case_.fluidProperties);
-    const auto& physics = system_.physics;
+    scene_.physics = readPhysicalParameters(case_.fluidProperties);
+    const auto& physics = scene_.physics;
+    scene_.constants.supportRadius = physics.supportRadius;
 
     const Dictionary& schemes = case_.sphSchemes;
     auto solutionFor = [&](const std::string& kind) { return case_.sphSolution.findDict(kind); };
     kernel_ = registry.create<Kernel>(schemes.subDict("kernel"), physics);
-    system_.kernel.build(*kernel_);
+    scene_.kernel.build(*kernel_);
     pressure_ = registry.create<PressureModel>(schemes.subDict("pressure"), physics, solutionFor("pressure"));
     if (const Dictionary* v = schemes.findDict("viscosity"))
         viscosity_ = registry.create<ViscosityModel>(*v, physics, solutionFor("viscosity"));
@@ -90,25 +91,27 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     }
 
     buildParticles();
+    resolveConstants();
 
-    if (system_.hasBoundary()) {
+    if (scene_.hasWalls()) {
         if (!schemes.findDict("boundary"))
             throw InputError(schemes.where(), "constant/geometry has walls, so sphSchemes needs a "
                                               "'boundary { type ...; }' entry (e.g. akinci)", "boundary");
         boundaryModel_ = registry.create<BoundaryModel>(schemes.subDict("boundary"), physics);
     }
     schemes.markUsed("boundary");
+    checkIntegratorApplies(schemes);
     schemes.markUsed("pressureSolvers"); // the tutorials' menu of solvers, chosen with $pressureSolvers.<name>
     schemes.checkAllKeywordsUsed();
     case_.sphSolution.markUsed("pressure");
     case_.sphSolution.markUsed("viscosity");
     case_.sphSolution.checkAllKeywordsUsed();
 
-    if (boundaryModel_) boundaryModel_->initialise(system_);
-    pressure_->initialise(system_);
-    if (viscosity_) viscosity_->initialise(system_);
-    for (auto& f : forces_) f->initialise(system_);
-    integrator_->initialise(system_);
+    if (boundaryModel_) boundaryModel_->initialise(scene_);
+    pressure_->initialise(scene_);
+    if (viscosity_) viscosity_->initialise(scene_);
+    for (auto& f : forces_) f->initialise(scene_);
+    integrator_->initialise(scene_);
     if (functions) {
         for (const auto& name : functions->keywords())
             functions_.push_back(registry.create<FunctionObject>(functions->subDict(name), physics, nullptr,
@@ -117,56 +120,133 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
 
     writer_ = std::make_unique<CaseWriter>(case_.dir, control.getOrDefault<int>("timePrecision", 6));
     restarted_ = time_->startFromLatest() && restartFromLatest();
-    if (!restarted_) system_.time = time_->startTime();
-    time_->begin(system_.time, lastDeltaT_);
-    if (restarted_) integrator_->restarted(system_);
-    for (auto& f : functions_) f->start(system_, system_.time);
+    if (!restarted_) scene_.time = time_->startTime();
+    time_->begin(scene_.time, lastDeltaT_);
+    if (restarted_) integrator_->restarted(scene_);
+    for (auto& f : functions_) f->start(scene_, scene_.time);
     if (pressure_->isIterative())
         solverPerformance_ = std::make_unique<PostProcessingFile>(
-            case_.dir, "solverPerformance", system_.time,
+            case_.dir, "solverPerformance", scene_.time,
             std::vector<std::string>{"iterations", "converged", "maxDensityError", "avgDensityError"});
 }
 
 Simulation::~Simulation() = default;
 
 void Simulation::buildParticles() {
-    const auto& physics = system_.physics;
-    const SampledGeometry g = sampleGeometry(case_.geometry, physics.particleSpacing, physics.dimension);
-    auto& fluid = system_.fluid;
+    const auto& physics = scene_.physics;
+    const SampledGeometry g = sampleGeometry(case_.geometry, physics.particleSpacing, physics.dimension, physics.gravity);
+    auto& fluid = scene_.fluid;
     fluid.resize(g.fluidPositions.size());
-    fluid.setParticleMass(latticeParticleMass(system_.kernel, physics));
+    fluid.setParticleMass(latticeParticleMass(scene_.kernel, physics));
     for (std::size_t i = 0; i < g.fluidPositions.size(); ++i) {
         fluid.position()[i] = g.fluidPositions[i];
         fluid.velocity()[i] = g.fluidVelocities[i];
         fluid.density()[i] = physics.rho0;
         fluid.id()[i] = Index(i);
     }
-    auto& wall = system_.boundary;
-    wall.resize(g.wallPositions.size());
-    for (std::size_t i = 0; i < g.wallPositions.size(); ++i) {
-        wall.position()[i] = g.wallPositions[i];
-        wall.density()[i] = physics.rho0;
-        wall.id()[i] = Index(i);
+    // Each wall entry is a wall system; the vector is not resized after this (the search keeps
+    // pointers to the walls' positions).
+    scene_.walls.clear();
+    scene_.walls.reserve(g.walls.size());
+    Vec3 sweptLo = g.boundsMin, sweptHi = g.boundsMax; // moving walls: where they go during the run
+    for (const SampledWall& sampled : g.walls) {
+        WallSystem& w = scene_.walls.emplace_back(sampled.name);
+        auto& set = w.particles;
+        set.resize(sampled.positions.size());
+        for (std::size_t i = 0; i < sampled.positions.size(); ++i) {
+            set.position()[i] = sampled.positions[i];
+            set.density()[i] = physics.rho0;
+            set.id()[i] = Index(i);
+        }
+        if (sampled.motion) {
+            w.motion = Motion::read(*sampled.motion, physics.dimension);
+            Vec3 lo, hi;
+            w.motion->sweptRange(time_->startTime(), time_->endTime(), lo, hi);
+            Vec3 wallLo = Vec3::Constant(std::numeric_limits<Scalar>::max()), wallHi = -wallLo;
+            for (const Vec3& p : sampled.positions) {
+                wallLo = wallLo.cwiseMin(p);
+                wallHi = wallHi.cwiseMax(p);
+            }
+            sweptLo = sweptLo.cwiseMin(wallLo + lo);
+            sweptHi = sweptHi.cwiseMax(wallHi + hi);
+            log::info("Wall '" + sampled.name + "' moves: " + w.motion->describe());
+        }
     }
-    // Neighbour grid over the sampled bounds with a generous margin (particles beyond it are
-    // clamped into border cells: correct, only slower).
-    const Vec3 extent = g.boundsMax - g.boundsMin;
+    if (physics.dimension == 2) sweptLo[2] = sweptHi[2] = 0;
+    // Neighbour grid over the sampled bounds (and the moving walls' sweep) with a generous
+    // margin (particles beyond it are clamped into border cells: correct, only slower).
+    const Vec3 extent = sweptHi - sweptLo;
     const Scalar margin = 2 * physics.supportRadius;
-    domainMin_ = g.boundsMin - Vec3::Constant(margin) - Scalar(0.25) * extent;
-    domainMax_ = g.boundsMax + Vec3::Constant(margin) + Scalar(0.25) * extent;
+    domainMin_ = sweptLo - Vec3::Constant(margin) - Scalar(0.25) * extent;
+    domainMax_ = sweptHi + Vec3::Constant(margin) + Scalar(0.25) * extent;
     periodic_ = g.periodic;
     if (physics.dimension == 2) domainMin_[2] = domainMax_[2] = 0;
     // A particle beyond one more extent (and 10 h) from everything sampled has blown up.
     const Vec3 reach = extent.cwiseMax(Vec3::Constant(10 * physics.supportRadius));
-    blowUpMin_ = g.boundsMin - reach;
-    blowUpMax_ = g.boundsMax + reach;
+    blowUpMin_ = sweptLo - reach;
+    blowUpMax_ = sweptHi + reach;
     // ... or moves 100 times faster than a free fall across the domain could make it
     blowUpSpeedFloor_ = 100 * std::sqrt(2 * physics.gravity.norm() * extent.norm());
-    system_.search.setup(physics.supportRadius, physics.dimension, domainMin_, domainMax_, periodic_);
-    if (wall.size() > 0) {
-        const auto order = system_.search.sortOrder(wall.position());
-        wall.permute(order);
-        system_.search.setBoundary(wall.position());
+    scene_.search.setup(scene_.constants.supportRadius, physics.dimension, domainMin_, domainMax_, periodic_);
+    std::vector<NeighbourSearch::WallSource> sources;
+    for (WallSystem& w : scene_.walls) {
+        w.particles.permute(scene_.search.sortOrder(w.particles.position())); // cache order
+        if (w.moving()) w.initialPosition = w.particles.position();
+        sources.push_back({&w.particles.position(), w.moving()});
+    }
+    scene_.search.setWalls(sources);
+    // the fluid's initial extent along gravity, for the equation of state's default sound speed
+    const Scalar gNorm = physics.gravity.norm();
+    if (gNorm > 0 && fluid.size() > 0) {
+        const Vec3 up = -physics.gravity / gNorm;
+        Scalar lo = std::numeric_limits<Scalar>::max(), hi = -lo;
+        for (const auto& x : fluid.position()) {
+            lo = std::min(lo, x.dot(up));
+            hi = std::max(hi, x.dot(up));
+        }
+        scene_.constants.fluidHeight = hi - lo + physics.particleSpacing;
+    }
+}
+
+void Simulation::resolveConstants() {
+    SceneConstants& c = scene_.constants;
+    c.particleMass = scene_.fluid.particleMass();
+    c.soundSpeed = pressure_->soundSpeed(c, scene_.physics);
+    if (!(c.soundSpeed >= 0) || !std::isfinite(c.soundSpeed))
+        throw std::logic_error("the pressure model declared a sound speed that is not a finite non-negative number");
+}
+
+void Simulation::checkIntegratorApplies(const Dictionary& schemes) const {
+    const auto describe = [](ResultKind k) {
+        return k == ResultKind::velocityChange ? "a change of velocity (dv, added as dv/dt)"
+                                               : "a change of position (dx, added as dx/dt^2)";
+    };
+    const std::string integrator = schemes.subDict("integrator").get<std::string>("type");
+    const auto check = [&](const char* slot, const std::string& type, ResultKind kind) {
+        if (integrator_->applies(kind)) return;
+        throw InputError(schemes.subDict("integrator").locationOf("type"),
+                         std::string(slot) + " '" + type + "' returns " + describe(kind) + ", which integrator '" +
+                             integrator + "' cannot apply exactly; use 'integrator { type symplecticEuler; }' " +
+                             "(the scheme " + type + " is formulated with)",
+                         "type");
+    };
+    check("pressure", schemes.subDict("pressure").get<std::string>("type"), pressure_->result());
+    if (viscosity_) check("viscosity", schemes.subDict("viscosity").get<std::string>("type"), viscosity_->result());
+    if (const Dictionary* forces = schemes.findDict("forces"))
+        for (std::size_t k = 0; k < forces_.size(); ++k)
+            check("force", forces->subDict(forces->keywords()[k]).get<std::string>("type"), forces_[k]->result());
+}
+
+void Simulation::placeMovingWalls(double time) {
+    for (WallSystem& w : scene_.walls) {
+        if (!w.moving()) continue;
+        const Vec3 d = w.motion->displacement(time), v = w.motion->velocity(time), a = w.motion->acceleration(time);
+        auto& x = w.particles.position();
+        const std::size_t n = x.size();
+#pragma omp parallel for schedule(static)
+        for (std::size_t b = 0; b < n; ++b) x[b] = w.initialPosition[b] + d;
+        std::fill(w.particles.velocity().begin(), w.particles.velocity().end(), v);
+        std::fill(w.particles.acceleration().begin(), w.particles.acceleration().end(), a);
     }
 }
 
@@ -205,7 +285,7 @@ void Simulation::rereadControlDictIfChanged() {
         const double previous = time_->previousDeltaT();
         *time_ = updated;
         time_->setPreviousDeltaT(previous);
-        time_->scheduleNextWrite(system_.time);
+        time_->scheduleNextWrite(scene_.time);
         case_.controlDict = std::move(control);
         log::info("Re-read system/controlDict (endTime " + std::to_string(time_->endTime()) + ")");
     } catch (const InputError& e) {
@@ -229,8 +309,8 @@ std::string Simulation::timeFile() const {
     std::ostringstream s;
     s << std::setprecision(17) << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
       << "    class       dictionary;\n    object      time;\n}\n\n"
-      << "value       " << system_.time << ";\n"
-      << "index       " << system_.step << ";\n"
+      << "value       " << scene_.time << ";\n"
+      << "index       " << scene_.step << ";\n"
       << "deltaT      " << lastDeltaT_ << ";\n";
     return s.str();
 }
@@ -244,7 +324,7 @@ bool Simulation::restartFromLatest() {
     }
     const auto& [time, name] = times.back();
     const ParticleSet saved = readVtp(case_.dir / name / "fluid.vtp");
-    auto& fluid = system_.fluid;
+    auto& fluid = scene_.fluid;
     if (saved.size() == 0) throw InputError({(case_.dir / name / "fluid.vtp").string(), 0, 0}, "no particles to restart from");
     fluid.resize(saved.size());
     fluid.id() = saved.id();
@@ -253,18 +333,18 @@ bool Simulation::restartFromLatest() {
     for (const auto& f : saved.vectorFields())
         if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
     fluid.position() = saved.position();
-    system_.time = time;
+    scene_.time = time;
     lastDeltaT_ = 0;
     // exact time, step index and last Δt (time directories written by older versions lack it)
     const fs::path timeFilePath = case_.dir / name / "uniform/time";
     if (fs::exists(timeFilePath)) {
         const Dictionary t = Dictionary::fromFile(timeFilePath);
-        system_.time = t.get<double>("value");
-        system_.step = t.get<long>("index");
+        scene_.time = t.get<double>("value");
+        scene_.step = t.get<long>("index");
         lastDeltaT_ = t.get<double>("deltaT");
     }
-    boundaryWritten_ = true; // static walls were written at the first time
-    log::info("Restarting from time " + name + " (step " + std::to_string(system_.step) + ", " +
+    staticWallsWritten_ = true; // fixed walls were written at the first time
+    log::info("Restarting from time " + name + " (step " + std::to_string(scene_.step) + ", " +
               std::to_string(saved.size()) + " particles)");
     return true;
 }
@@ -283,10 +363,12 @@ std::string Simulation::schemesSummary() const {
     return s.str();
 }
 
-void Simulation::evaluate(Scalar dt) {
-    auto& s = system_;
-    if (!pressure_->searchedAt(s)) s.search.build(s.fluid.position());
-    s.fluidPairGradients = nullptr; // the last lists' (a pressure model may set it again)
+void Simulation::evaluate(double time, Scalar dt) {
+    auto& s = scene_;
+    placeMovingWalls(time);
+    // a search a model made ahead at exactly these positions (dfsph's check) is kept, unless a
+    // wall has moved since
+    if (!s.search.builtAt(s.fluid.position()) || s.anyMovingWall()) s.search.build(s.fluid.position());
     pressure_->computeDensity(s);
     if (boundaryModel_) boundaryModel_->update(s);
     auto& a = s.fluid.acceleration();
@@ -299,13 +381,15 @@ void Simulation::evaluate(Scalar dt) {
 }
 
 double Simulation::stableDeltaT() const {
-    const auto& s = system_;
+    const auto& s = scene_;
     const double h = s.physics.supportRadius;
     const auto& v = s.fluid.velocity();
     const auto& a = s.fluid.acceleration();
-    const double vMax = std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); }));
+    double vMax = std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); }));
     const double aMax = std::sqrt(parallelMax(a.size(), [&](std::size_t i) { return a[i].squaredNorm(); }));
-    const double c0 = pressure_->soundSpeed();
+    for (const auto& w : s.walls) // a moving wall's speed over the step (it is uniform over the wall)
+        if (w.moving()) vMax = std::max(vMax, double(w.motion->velocity(s.time).norm()));
+    const double c0 = s.constants.soundSpeed;
     double dt = std::numeric_limits<double>::infinity();
     if (c0 + vMax > 0) dt = time_->maxCo() * h / (c0 + vMax);
     if (aMax > 0) dt = std::min(dt, 0.25 * std::sqrt(h / aMax));
@@ -318,14 +402,14 @@ double Simulation::stableDeltaT() const {
 }
 
 std::string Simulation::findBlowUp(bool& densityOnly) const {
-    const auto& f = system_.fluid;
+    const auto& f = scene_.fluid;
     const auto& x = f.position();
     const auto& v = f.velocity();
     const auto& rho = f.density();
     const auto& p = f.pressure();
     const auto& a = f.acceleration();
-    const int dim = system_.physics.dimension;
-    const double rho0 = system_.physics.rho0;
+    const int dim = scene_.physics.dimension;
+    const double rho0 = scene_.physics.rho0;
     // worst particle: not finite > far outside > largest density error
     long worst = -1;
     int worstKind = 0; // 3 not finite, 2 outside, 1 density
@@ -373,7 +457,7 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
     if (worst < 0) return {};
     const std::size_t i = std::size_t(worst);
     std::ostringstream s;
-    s << std::setprecision(6) << "blow-up at step " << system_.step << ", time " << system_.time << ": particle "
+    s << std::setprecision(6) << "blow-up at step " << scene_.step << ", time " << scene_.time << ": particle "
       << f.id()[i] << " at (" << x[i].transpose() << ") with velocity (" << v[i].transpose() << ") ";
     if (worstKind == 3) s << "has a value that is not finite (density " << rho[i] << ", pressure " << p[i] << ")";
     else if (worstKind == 2 && v[i].norm() > blowUpSpeed_) s << "moves faster than " << blowUpSpeed_ << " m/s";
@@ -383,18 +467,18 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
 }
 
 void Simulation::write() {
-    const ParticleSet* wall = nullptr;
-    if (system_.hasBoundary() && !boundaryWritten_) {
-        wall = &system_.boundary;
-        boundaryWritten_ = true;
-    }
-    writer_->write(system_.time, system_.fluid, wall, writeFields_, {{"uniform/time", timeFile()}});
+    // fixed walls once (later times refer to them), moving walls at every written time
+    std::vector<const ParticleSet*> walls;
+    for (const auto& w : scene_.walls)
+        if (w.moving() || !staticWallsWritten_) walls.push_back(&w.particles);
+    staticWallsWritten_ = true;
+    writer_->write(scene_.time, scene_.fluid, walls, writeFields_, {{"uniform/time", timeFile()}});
     ++writes_;
 }
 
 void Simulation::writeInitialState() {
     writer_->rebuildCollection();
-    evaluate(Scalar(time_->initialDeltaT()));
+    evaluate(scene_.time, Scalar(time_->initialDeltaT()));
     write();
 }
 
@@ -424,20 +508,22 @@ RunSummary Simulation::run() {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     StopSignals signals;
-    auto& s = system_;
+    auto& s = scene_;
     RunSummary summary;
     summary.fluidParticles = s.fluid.size();
-    summary.boundaryParticles = s.boundary.size();
+    summary.wallParticles = s.wallParticles();
 
     writer_->rebuildCollection();
     if (!restarted_) {
-        evaluate(Scalar(time_->initialDeltaT()));
+        evaluate(s.time, Scalar(time_->initialDeltaT()));
         write();
     }
     {
         double vMax0 = 0;
         for (const auto& v : s.fluid.velocity()) vMax0 = std::max(vMax0, double(v.norm()));
-        blowUpSpeedAuto_ = std::max({blowUpSpeedFloor_, 100 * double(s.soundSpeed), 100 * vMax0, 1.0});
+        for (const auto& w : s.walls)
+            if (w.moving()) vMax0 = std::max(vMax0, double(w.motion->velocity(s.time).norm()));
+        blowUpSpeedAuto_ = std::max({blowUpSpeedFloor_, 100 * double(s.constants.soundSpeed), 100 * vMax0, 1.0});
         blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
     }
 
@@ -458,14 +544,7 @@ RunSummary Simulation::run() {
     double dtCap = std::numeric_limits<double>::infinity();
     log::info("\nStarting time loop\n");
     while (!time_->finished(s.time)) {
-        if (sortEvery_ > 0 && s.step % sortEvery_ == 0) {
-            const std::vector<Index> order = s.search.sortOrder(s.fluid.position());
-            // a search the pressure model made at these positions is kept, relabelled
-            const bool keepSearch = pressure_->searchedAt(s);
-            if (keepSearch) pressure_->permute(s, order);
-            s.fluid.permute(order);
-            if (keepSearch) s.search.permute(order);
-        }
+        if (sortEvery_ > 0 && s.step % sortEvery_ == 0) resortFluid(s);
         const double dt = std::min(time_->nextDeltaT(s.time, stableDeltaT()), dtCap);
         if (!keepPrevious) std::swap(previous, last);
         keepPrevious = false;
@@ -476,7 +555,7 @@ RunSummary Simulation::run() {
         last.dtTaken = dt;
         last.valid = true;
 
-        integrator_->step(s, Scalar(dt), [&] { evaluate(Scalar(dt)); });
+        integrator_->step(s, Scalar(dt), [&](double t) { evaluate(t, Scalar(dt)); });
         s.time = last.time + dt;
         ++s.step;
         if (periodic_.any()) {

@@ -1,5 +1,6 @@
-// Spindrift — one run of a case: set-up (dictionaries → particles → models) and the time loop
-//   neighbour search → density → boundary → non-pressure → pressure → integrator → write.
+// Spindrift — one run of a case: set-up (dictionaries → particle systems → constants → models)
+// and the time loop
+//   walls placed → neighbour search → density → boundary → non-pressure → pressure → integrator → write.
 #pragma once
 
 #include "Case.hpp"
@@ -17,7 +18,7 @@ struct RunSummary {
     bool interrupted = false;       // stopped by SIGINT/SIGTERM (state written)
     double endTime = 0;
     double wallSeconds = 0;
-    std::size_t fluidParticles = 0, boundaryParticles = 0;
+    std::size_t fluidParticles = 0, wallParticles = 0;
     int writes = 0;
     double maxDensityError = 0;     // max over the run of max_i |ρ_i − ρ0|/ρ0
     double averageIterations = 0;   // of an iterative pressure solver
@@ -38,19 +39,25 @@ public:
     // Evaluates the initial accelerations and writes the start time only (-dryRun).
     void writeInitialState();
 
-    SphSystem& system() { return system_; }
+    Scene& scene() { return scene_; }
     const Case& caseFiles() const { return case_; }
     const TimeControl& timeControl() const { return *time_; }
     std::string schemesSummary() const;
 
-    // One force evaluation at the current state with step size dt (public for tests).
-    void evaluate(Scalar dt);
+    // One force evaluation at the current state, the walls placed at 'time', with step size dt
+    // (public for tests).
+    void evaluate(double time, Scalar dt);
     double stableDeltaT() const;
 
 private:
     void readRunControls(const Dictionary& control);
     void rereadControlDictIfChanged();
     void buildParticles();
+    void resolveConstants();
+    void checkIntegratorApplies(const Dictionary& schemes) const;
+    // Moves the moving walls to where their motion puts them at 'time' (positions, velocities,
+    // accelerations).
+    void placeMovingWalls(double time);
     bool restartFromLatest();
     void write();
     std::string timeFile() const;
@@ -60,7 +67,7 @@ private:
     void checkWritable() const;
 
     Case case_;
-    SphSystem system_;
+    Scene scene_;
     std::unique_ptr<TimeControl> time_;
     std::unique_ptr<CaseWriter> writer_;
     std::unique_ptr<Kernel> kernel_;
@@ -84,7 +91,7 @@ private:
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
     Periodicity periodic_;
-    bool boundaryWritten_ = false;
+    bool staticWallsWritten_ = false;
     bool restarted_ = false;
     int writes_ = 0;
 };

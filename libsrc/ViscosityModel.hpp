@@ -1,9 +1,9 @@
-// Spindrift — non-pressure forces: viscosity (plugins/viscosity, one per case in
-// sphSchemes `viscosity { }`) and further forces (plugins/forces, any number in sphSchemes
+// Spindrift — non-pressure forces: viscosity (plugins/viscosity, one per case in sphSchemes
+// `viscosity { }`) and further forces (plugins/forces, any number in sphSchemes
 // `forces { name { type ...; } }`, e.g. vorticity confinement, surface tension).
-// Each adds its acceleration to fluid.acceleration() and loops over neighbours itself. They run
-// after the density is known and before the pressure model, so iterative pressure solvers
-// predict with the non-pressure accelerations.
+// Each adds its result to fluid.acceleration(), as a pair term through the core's pair loop
+// (PairLoop.hpp: addPairAcceleration). They run after the density is known and before the
+// pressure model, so iterative pressure solvers predict with the non-pressure accelerations.
 #pragma once
 
 #include "ModelContext.hpp"
@@ -13,8 +13,9 @@ namespace spindrift {
 class ForceModel {
 public:
     virtual ~ForceModel() = default;
-    virtual void initialise(SphSystem&) {}
-    virtual void addAcceleration(SphSystem& system, Scalar dt) = 0;
+    virtual void initialise(Scene&) {}
+    virtual void addAcceleration(Scene& scene, Scalar dt) = 0;
+    virtual ResultKind result() const { return ResultKind::acceleration; }
     // Kinematic viscosity for the viscous time-step limit Δt <= 0.125 h²/ν (0 = no limit).
     virtual Scalar timeStepViscosity() const { return 0; }
 };

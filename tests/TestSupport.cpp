@@ -57,7 +57,7 @@ PhysicalParameters physicsFor(int dim, Scalar dx, Scalar supportFactor, Scalar r
     return p;
 }
 
-void fillLattice(SphSystem& s, const Kernel& kernel, const Vec3& lo, const Vec3& hi) {
+void fillLattice(Scene& s, const Kernel& kernel, const Vec3& lo, const Vec3& hi) {
     const int dim = s.physics.dimension;
     const Scalar dx = s.physics.particleSpacing;
     std::vector<Vec3> points;
@@ -71,6 +71,8 @@ void fillLattice(SphSystem& s, const Kernel& kernel, const Vec3& lo, const Vec3&
     s.kernel.build(kernel);
     s.fluid.resize(points.size());
     s.fluid.setParticleMass(latticeParticleMass(s.kernel, s.physics));
+    s.constants.supportRadius = s.physics.supportRadius;
+    s.constants.particleMass = s.fluid.particleMass();
     for (std::size_t i = 0; i < points.size(); ++i) {
         s.fluid.position()[i] = points[i];
         s.fluid.density()[i] = s.physics.rho0;
@@ -81,6 +83,29 @@ void fillLattice(SphSystem& s, const Kernel& kernel, const Vec3& lo, const Vec3&
     if (dim == 2) dlo[2] = dhi[2] = 0;
     s.search.setup(s.physics.supportRadius, dim, dlo, dhi);
     s.search.build(s.fluid.position());
+}
+
+WallSystem& addWallSystem(Scene& s, const std::string& name, const std::vector<Vec3>& positions) {
+    WallSystem& w = s.walls.emplace_back(name);
+    w.particles.resize(positions.size());
+    for (std::size_t b = 0; b < positions.size(); ++b) {
+        w.particles.position()[b] = positions[b];
+        w.particles.density()[b] = s.physics.rho0;
+        w.particles.id()[b] = Index(b);
+    }
+    std::vector<NeighbourSearch::WallSource> sources;
+    for (auto& wall : s.walls) sources.push_back({&wall.particles.position(), wall.moving()});
+    s.search.setWalls(sources);
+    return w;
+}
+
+void setWallMasses(Scene& s, Scalar mass) {
+    static std::vector<std::unique_ptr<std::vector<Scalar>>> keep; // outlives the scene's pointers
+    for (auto& w : s.walls) {
+        keep.push_back(std::make_unique<std::vector<Scalar>>(w.size(), mass));
+        w.mass = keep.back().get();
+        w.pressureMirrored = true;
+    }
 }
 
 BlockScene::BlockScene(int dim, const std::string& kernelName, double supportFactor) {

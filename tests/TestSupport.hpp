@@ -60,13 +60,20 @@ std::unique_ptr<Base> createModel(const std::string& dictText, const PhysicalPar
 // Fills 'system' with fluid particles on a lattice of spacing dx in [lo, hi) (cell centres),
 // with the kernel tabulated, the lattice particle mass (density ρ0 inside the block) and the
 // neighbour search set up over a generous domain.
-void fillLattice(SphSystem& system, const Kernel& kernel, const Vec3& lo, const Vec3& hi);
+void fillLattice(Scene& system, const Kernel& kernel, const Vec3& lo, const Vec3& hi);
+
+// Adds a fixed wall system of particles at 'positions' (density ρ0) to the scene and hands every
+// wall to the neighbour search again (the scene's search must be set up). Returns the new wall.
+WallSystem& addWallSystem(Scene& s, const std::string& name, const std::vector<Vec3>& positions);
+// Gives every wall of the scene the same particle mass M_b = mass and mirrored pressure, as a
+// boundary model does in its initialise().
+void setWallMasses(Scene& s, Scalar mass);
 
 // A block of fluid on a lattice for the pressure solvers' tests: n^dim particles of spacing
 // 0.01, positions scaled by 'scale' about the block centre (scale < 1: compressed), and models
 // made from sphSchemes / sphSolution text (the dictionaries outlive the models).
 struct BlockScene {
-    SphSystem s;
+    Scene s;
     std::unique_ptr<Kernel> kernel;
     std::vector<std::unique_ptr<Dictionary>> dicts;
     BlockScene(int dim, const std::string& kernelName, double supportFactor);
@@ -76,6 +83,7 @@ struct BlockScene {
         const Dictionary& d = *dicts.back();
         dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(solution, "sphSolution.pressure")));
         auto m = ModelRegistry::instance().create<Base>(d, s.physics, dicts.back().get());
+        if constexpr (std::is_same_v<Base, PressureModel>) s.constants.soundSpeed = m->soundSpeed(s.constants, s.physics);
         m->initialise(s);
         return m;
     }

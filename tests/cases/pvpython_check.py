@@ -1,12 +1,14 @@
 """Checks that ParaView reads a Spindrift case collection (.pvd) as expected.
 
 Usage:
-    pvpython pvpython_check.py <file.pvd> <expectedTimeCount> <array1> [array2 ...]
+    pvpython pvpython_check.py [--blocks N] <file.pvd> <expectedTimeCount> <array1> [array2 ...]
 
 Opens the .pvd with ParaView's PVD reader, checks that it reports exactly
 <expectedTimeCount> time steps, then, at every time step, updates the pipeline, fetches the
 data and checks that the fluid data set (part 0 of the collection; a multiblock data set when
 the case also has walls, part 1) has more than zero points and every named point-data array.
+With --blocks N, every time step must hold exactly N data sets with points: one block per
+particle system (the fluid, and each wall system, fixed or moving).
 Prints one summary line and exits 0; on any failure prints the reasons to stderr and exits 1.
 """
 
@@ -20,6 +22,10 @@ def fail(messages):
 
 
 def parse_arguments(argv):
+    blocks = None
+    if len(argv) > 2 and argv[1] == "--blocks":
+        blocks = int(argv[2])
+        argv = argv[:1] + argv[3:]
     if len(argv) < 4:
         fail(["usage: pvpython pvpython_check.py <file.pvd> <expectedTimeCount> "
               "<array1> [array2 ...]"])
@@ -27,7 +33,7 @@ def parse_arguments(argv):
         expected = int(argv[2])
     except ValueError:
         fail(["expectedTimeCount must be an integer, got '%s'" % argv[2]])
-    return argv[1], expected, argv[3:]
+    return argv[1], expected, argv[3:], blocks
 
 
 def leaves(data, path=""):
@@ -62,7 +68,7 @@ def fluid_block(data):
 
 
 def main(argv):
-    pvd, expected, arrays = parse_arguments(argv)
+    pvd, expected, arrays, blocks = parse_arguments(argv)
 
     import os
     if not os.path.isfile(pvd):
@@ -98,6 +104,12 @@ def main(argv):
             got = info.Get(vtkDataObject.DATA_TIME_STEP())
             if abs(got - t) > 1e-12 * max(1.0, abs(t)):
                 errors.append("time %g: fetched data is for time %g" % (t, got))
+        if blocks is not None:
+            filled = [path for path, block in leaves(data)
+                      if hasattr(block, "GetNumberOfPoints") and block.GetNumberOfPoints() > 0]
+            if len(filled) != blocks:
+                errors.append("time %g: %d blocks with points (%s), expected %d"
+                              % (t, len(filled), ", ".join(filled), blocks))
         fluid, where = fluid_block(data)
         if fluid is None or not hasattr(fluid, "GetPointData"):
             errors.append("time %g: no fluid data set in the %s (%s)"

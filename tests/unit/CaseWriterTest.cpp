@@ -260,9 +260,9 @@ TEST(CaseWriter, TimesWithStaticBoundary) {
     CaseWriter writer(caseDir);
     const ParticleSet fluid = randomSet(100, 11);
     const ParticleSet walls = randomSet(40, 12, "boundary");
-    writer.write(0.0, fluid, &walls);
-    writer.write(0.05, fluid, nullptr);
-    writer.write(0.1 + 1e-17, fluid, nullptr);
+    writer.write(0.0, fluid, {&walls});
+    writer.write(0.05, fluid, {});
+    writer.write(0.1 + 1e-17, fluid, {});
 
     EXPECT_EQ(writer.collectionFile(), caseDir / "damBreak.pvd");
     for (const char* t : {"0", "0.05", "0.1"})
@@ -311,11 +311,11 @@ TEST(CaseWriter, BoundaryEntryPointsToNewestWallsAtOrBefore) {
     CaseWriter writer(caseDir);
     const ParticleSet fluid = randomSet(10, 1);
     const ParticleSet walls = randomSet(5, 2, "boundary");
-    writer.write(0.0, fluid, nullptr); // no walls yet
-    writer.write(1.0, fluid, &walls);
-    writer.write(2.0, fluid, nullptr);
-    writer.write(3.0, fluid, &walls);
-    writer.write(4.0, fluid, nullptr);
+    writer.write(0.0, fluid, {}); // no walls yet
+    writer.write(1.0, fluid, {&walls});
+    writer.write(2.0, fluid, {});
+    writer.write(3.0, fluid, {&walls});
+    writer.write(4.0, fluid, {});
     std::vector<std::string> boundaryFiles;
     for (const auto& e : parsePvd(writer.collectionFile()))
         if (e.part == "1") boundaryFiles.push_back(e.timestep + "->" + e.file);
@@ -323,16 +323,42 @@ TEST(CaseWriter, BoundaryEntryPointsToNewestWallsAtOrBefore) {
                                                        "3->3/boundary.vtp", "4->3/boundary.vtp"}));
 }
 
+// A fixed wall written once and a moving wall written at every time: a part each, the fixed
+// one pointing to its first file, the moving one to each time's own.
+TEST(CaseWriter, OneBlockPerWallSystem) {
+    TempDir dir("spindrift-casewriter");
+    const fs::path caseDir = dir.path() / "paddle";
+    CaseWriter writer(caseDir);
+    const ParticleSet fluid = randomSet(10, 1);
+    const ParticleSet tank = randomSet(5, 2, "tank"), paddle = randomSet(4, 3, "paddle");
+    writer.write(0.0, fluid, {&tank, &paddle});
+    writer.write(0.5, fluid, {&paddle});
+    writer.write(1.0, fluid, {&paddle});
+    std::vector<std::string> parts;
+    for (const auto& e : parsePvd(writer.collectionFile())) {
+        parts.push_back(e.timestep + " " + e.part + " " + e.name + " " + e.file);
+        EXPECT_TRUE(fs::is_regular_file(caseDir / e.file)) << e.file;
+    }
+    EXPECT_EQ(parts, (std::vector<std::string>{
+                         "0 0 fluid 0/fluid.vtp", "0 1 paddle 0/paddle.vtp", "0 2 tank 0/tank.vtp",
+                         "0.5 0 fluid 0.5/fluid.vtp", "0.5 1 paddle 0.5/paddle.vtp", "0.5 2 tank 0/tank.vtp",
+                         "1 0 fluid 1/fluid.vtp", "1 1 paddle 1/paddle.vtp", "1 2 tank 0/tank.vtp"}));
+    // a restart scans the same blocks back
+    CaseWriter again(caseDir);
+    again.rebuildCollection();
+    EXPECT_EQ(parsePvd(again.collectionFile()).size(), parts.size());
+}
+
 TEST(CaseWriter, ExistingTimesIgnoresIncompleteHiddenAndNonNumeric) {
     TempDir dir("spindrift-casewriter");
     const fs::path caseDir = dir.path() / "c";
     CaseWriter writer(caseDir);
     const ParticleSet fluid = randomSet(10, 5);
-    writer.write(0.1, fluid, nullptr);
-    writer.write(0.0, fluid, nullptr);
-    writer.write(1e-05, fluid, nullptr);
-    writer.write(10.0, fluid, nullptr);
-    writer.write(2.0, fluid, nullptr);
+    writer.write(0.1, fluid, {});
+    writer.write(0.0, fluid, {});
+    writer.write(1e-05, fluid, {});
+    writer.write(10.0, fluid, {});
+    writer.write(2.0, fluid, {});
 
     fs::create_directories(caseDir / ".0.2.tmp");
     fs::copy_file(caseDir / "0" / "fluid.vtp", caseDir / ".0.2.tmp" / "fluid.vtp");
@@ -362,9 +388,9 @@ TEST(CaseWriter, RebuildCollectionAfterDeletingATime) {
     const ParticleSet walls = randomSet(5, 6, "boundary");
     {
         CaseWriter writer(caseDir);
-        writer.write(0.0, fluid, &walls);
-        writer.write(0.5, fluid, nullptr);
-        writer.write(1.0, fluid, nullptr);
+        writer.write(0.0, fluid, {&walls});
+        writer.write(0.5, fluid, {});
+        writer.write(1.0, fluid, {});
     }
     fs::remove_all(caseDir / "0.5");
     fs::create_directories(caseDir / ".1.5.tmp"); // as left by a crash
@@ -379,7 +405,7 @@ TEST(CaseWriter, RebuildCollectionAfterDeletingATime) {
     EXPECT_EQ(entries[3].file, "0/boundary.vtp");
 
     // Continuing the run keeps pointing at the walls found at start-up.
-    writer.write(1.5, fluid, nullptr);
+    writer.write(1.5, fluid, {});
     EXPECT_FALSE(fs::exists(caseDir / ".1.5.tmp"));
     const auto after = parsePvd(writer.collectionFile());
     ASSERT_EQ(after.size(), 6u);
@@ -392,16 +418,16 @@ TEST(CaseWriter, WritingTheSameTimeTwiceReplacesIt) {
     const fs::path caseDir = dir.path() / "c";
     CaseWriter writer(caseDir);
     const ParticleSet walls = randomSet(5, 6, "boundary");
-    writer.write(0.0, randomSet(10, 1), &walls);
-    writer.write(0.25, randomSet(10, 1), nullptr);
+    writer.write(0.0, randomSet(10, 1), {&walls});
+    writer.write(0.25, randomSet(10, 1), {});
     std::ofstream(caseDir / "0.25" / "stale.txt") << "from the first write";
-    writer.write(0.25, randomSet(20, 2), nullptr);
+    writer.write(0.25, randomSet(20, 2), {});
     EXPECT_EQ(readVtp(caseDir / "0.25" / "fluid.vtp").size(), 20u);
     EXPECT_FALSE(fs::exists(caseDir / "0.25" / "stale.txt"));
     EXPECT_EQ(parsePvd(writer.collectionFile()).size(), 4u);
 
     // Rewriting the time holding the static walls without walls keeps them.
-    writer.write(0.0, randomSet(30, 3), nullptr);
+    writer.write(0.0, randomSet(30, 3), {});
     EXPECT_EQ(readVtp(caseDir / "0" / "fluid.vtp").size(), 30u);
     EXPECT_EQ(readVtp(caseDir / "0" / "boundary.vtp").size(), 5u);
     EXPECT_EQ(parsePvd(writer.collectionFile()).size(), 4u);
@@ -418,7 +444,7 @@ TEST(CaseWriter, CollectionNameFromDotOrTrailingSlash) {
     fs::current_path(caseDir);
     CaseWriter writer(".");
     EXPECT_EQ(writer.collectionFile().filename(), "myCase.pvd");
-    writer.write(0.0, randomSet(5, 1), nullptr);
+    writer.write(0.0, randomSet(5, 1), {});
     fs::current_path(previous);
     EXPECT_TRUE(fs::is_regular_file(caseDir / "myCase.pvd"));
     EXPECT_TRUE(fs::is_regular_file(caseDir / "0" / "fluid.vtp"));
@@ -428,8 +454,8 @@ TEST(CaseWriter, CaseDirectoryCanBeMoved) {
     TempDir dir("spindrift-casewriter");
     {
         CaseWriter writer(dir.path() / "a");
-        writer.write(0.0, randomSet(5, 1), nullptr);
-        writer.write(0.1, randomSet(5, 1), nullptr);
+        writer.write(0.0, randomSet(5, 1), {});
+        writer.write(0.1, randomSet(5, 1), {});
     }
     fs::rename(dir.path() / "a", dir.path() / "b");
     for (const auto& e : parsePvd(dir.path() / "b" / "a.pvd"))

@@ -8,7 +8,7 @@
 #include "Integrator.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "TestSupport.hpp"
 
 #include <gtest/gtest.h>
@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Scene : test::BlockScene {
-    explicit Scene(int dim) : BlockScene(dim, "wendlandC2", 2.6) {}
+struct TestScene : test::BlockScene {
+    explicit TestScene(int dim) : BlockScene(dim, "wendlandC2", 2.6) {}
     std::unique_ptr<PressureModel> pressure(const std::string& schemes, const std::string& solution) {
         return model<PressureModel>(schemes, solution);
     }
@@ -74,7 +74,7 @@ fs::path dfsphTank(const test::TempDir& tmp, const std::string& pressureEntries,
 TEST(Dfsph, DensitySolveReachesEtaAndTheStepDecompresses) {
     log::setQuiet(true);
     for (int dim : {2, 3}) {
-        Scene sc(dim);
+        TestScene sc(dim);
         sc.block(dim == 2 ? 20 : 10, 0.99);
         const double eta = 1e-3, dt = 1e-3;
         auto p = sc.pressure("type dfsph; divergenceSolve no;",
@@ -117,7 +117,7 @@ TEST(Dfsph, CheckPositionsHoldsTheRealDensityToEta) {
         const double eta = 1e-3, dt = 2e-3;
         double real[2];
         for (int check : {0, 1}) {
-            Scene sc(dim);
+            TestScene sc(dim);
             sc.block(dim == 2 ? 20 : 10, 0.97);
             auto p = sc.pressure(std::string("type dfsph; divergenceSolve no; checkPositions ") + (check ? "yes;" : "no;"),
                                  "maxDensityError 0.001; densityErrorNorm maximum; minIterations 2; maxIterations 500;");
@@ -147,16 +147,15 @@ TEST(Dfsph, CheckPositionsHoldsTheRealDensityToEtaAgainstAWall) {
     log::setQuiet(true);
     const int n = 10;
     const double eta = 1e-3, dt = 1e-3;
-    Scene sc(3);
+    TestScene sc(3);
     sc.block(n, 1.0);
     const double dx = sc.s.physics.particleSpacing, h = sc.s.physics.supportRadius;
     std::vector<Vec3> wall;
     for (int k = -3; k < n + 3; ++k)
         for (int j = -3; j < n + 3; ++j)
             for (int c = 1; c <= 3; ++c) wall.emplace_back(-(c - 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx);
-    sc.s.boundary.resize(wall.size());
-    std::copy(wall.begin(), wall.end(), sc.s.boundary.position().begin());
-    sc.s.search.setBoundary(wall);
+    test::addWallSystem(sc.s, "wall", wall);
+    test::setWallMasses(sc.s, sc.s.fluid.particleMass());
     sc.s.search.build(sc.s.fluid.position());
     for (auto& v : sc.s.fluid.velocity()) v = Vec3(-0.15 * h / dt, 0, 0);
     auto p = sc.pressure("type dfsph; divergenceSolve no; checkPositions yes;",
@@ -178,8 +177,9 @@ TEST(Dfsph, CheckPositionsHoldsTheRealDensityToEtaAgainstAWall) {
 // A check that passes has searched at the positions the step leads to: once the integrator
 // (symplectic Euler) has taken the step, the next evaluation takes that search and density
 // instead of searching again, and they equal a fresh search and density bit for bit; also
-// when the particles are re-sorted in between, as the time loop does every few steps (the
-// lists relabelled, the model's data reordered).
+// when the particles are re-sorted in between, as the time loop does every few steps
+// (resortFluid: the lists relabelled, the cached gradients and the model's scratch fields
+// reordered).
 TEST(Dfsph, APassedCheckLeavesTheNextSearchAndDensity) {
     log::setQuiet(true);
     for (int dim : {2, 3})
@@ -187,33 +187,32 @@ TEST(Dfsph, APassedCheckLeavesTheNextSearchAndDensity) {
             const double eta = 1e-3, dt = 2e-3;
             const std::string schemes = "type dfsph; divergenceSolve no; checkPositions yes;";
             const std::string solution = "maxDensityError 0.001; densityErrorNorm maximum; minIterations 2; maxIterations 500;";
-            Scene sc(dim);
+            TestScene sc(dim);
             sc.block(dim == 2 ? 20 : 10, 0.97);
             auto& s = sc.s;
             auto p = sc.pressure(schemes, solution);
             auto integrator = test::createModel<Integrator>("type symplecticEuler;", s.physics);
             p->computeDensity(s);
-            EXPECT_FALSE(p->searchedAt(s));
+            EXPECT_FALSE(s.search.builtAt(s.fluid.position()));
             std::fill(s.fluid.acceleration().begin(), s.fluid.acceleration().end(), Vec3::Zero());
             p->addPressureAcceleration(s, dt);
             ASSERT_TRUE(p->lastSolve().converged) << dim << "D";
-            integrator->step(s, Scalar(dt), [] {}); // with the acceleration just computed
-            ASSERT_TRUE(p->searchedAt(s)) << dim << "D: the integrator's positions are not the checked ones";
+            integrator->step(s, Scalar(dt), [](double) {}); // with the acceleration just computed
+            ASSERT_TRUE(s.search.builtAt(s.fluid.position())) << dim << "D: the integrator's positions are not the checked ones";
+            const long builds = s.search.builds();
             if (resort) { // as Simulation::run
                 const std::vector<Index> order = s.search.sortOrder(s.fluid.position());
                 ASSERT_FALSE(std::is_sorted(order.begin(), order.end())) << "the re-sort must move particles";
-                p->permute(s, order);
-                s.fluid.permute(order);
-                s.search.permute(order);
-                ASSERT_TRUE(p->searchedAt(s)) << dim << "D after the re-sort";
+                resortFluid(s);
+                ASSERT_TRUE(s.search.builtAt(s.fluid.position())) << dim << "D after the re-sort";
             }
 
             const NeighbourList taken = s.search.fluidNeighbours();
             p->computeDensity(s);
-            EXPECT_FALSE(p->searchedAt(s)); // taken once
+            EXPECT_EQ(s.search.builds(), builds); // no search of its own
             const std::vector<Scalar> density = s.fluid.density();
-            ASSERT_NE(s.fluidPairGradients, nullptr);
-            const std::vector<Vec3> gradients = *s.fluidPairGradients;
+            ASSERT_TRUE(s.gradients.validFor(s.search));
+            const std::vector<Vec3> gradients = s.gradients.values;
 
             s.search.build(s.fluid.position());
             auto fresh = sc.pressure(schemes, solution);
@@ -221,7 +220,7 @@ TEST(Dfsph, APassedCheckLeavesTheNextSearchAndDensity) {
             EXPECT_EQ(taken.offsets, s.search.fluidNeighbours().offsets);
             EXPECT_EQ(taken.indices, s.search.fluidNeighbours().indices);
             EXPECT_EQ(density, s.fluid.density()) << dim << "D, re-sort " << resort;
-            EXPECT_EQ(gradients, *s.fluidPairGradients) << dim << "D, re-sort " << resort;
+            EXPECT_EQ(gradients, s.gradients.values) << dim << "D, re-sort " << resort;
             std::cout << dim << "D" << (resort ? ", re-sorted" : "") << ": real density after the step "
                       << 100 * sc.maxCompression() << " % over rho0\n";
             EXPECT_LE(sc.maxCompression(), eta * (1 + test::tol(1e-9, 1e-4))); // float: ρ's rounding
@@ -237,9 +236,9 @@ TEST(Dfsph, ARunSearchesOnceAStepWithTheCheck) {
         test::TempDir tmp;
         const fs::path dir = dfsphTank(tmp, std::string("checkPositions ") + check + ";", 0.1, 0.15, 1e-3);
         Simulation sim(dir);
-        const long before = sim.system().search.builds();
+        const long before = sim.scene().search.builds();
         const RunSummary r = sim.run();
-        const long searches = sim.system().search.builds() - before;
+        const long searches = sim.scene().search.builds() - before;
         std::cout << "checkPositions " << check << ": " << r.steps << " steps, " << searches
                   << " neighbour searches, real density error at most " << 100 * r.maxDensityError << " %\n";
         ASSERT_GT(r.steps, 50);
@@ -255,7 +254,7 @@ TEST(Dfsph, ARunSearchesOnceAStepWithTheCheck) {
 TEST(Dfsph, DivergenceSolveRemovesAConvergingVelocityField) {
     log::setQuiet(true);
     for (int dim : {2, 3}) {
-        Scene sc(dim);
+        TestScene sc(dim);
         const Vec3 c = sc.block(dim == 2 ? 20 : 10, 1.0);
         auto& v = sc.s.fluid.velocity();
         for (std::size_t i = 0; i < v.size(); ++i) v[i] = -0.5 * (sc.s.fluid.position()[i] - c); // converging
@@ -282,7 +281,7 @@ TEST(Dfsph, DivergenceSolveRemovesAConvergingVelocityField) {
 
 TEST(Dfsph, RejectsBadSettings) {
     log::setQuiet(true);
-    Scene sc(2);
+    TestScene sc(2);
     sc.block(6, 1.0);
     EXPECT_THROW(sc.pressure("type dfsph; warmStart 2;", ""), InputError);
     EXPECT_THROW(sc.pressure("type dfsph;", "maxDivergenceIterations 0;"), InputError);
@@ -299,8 +298,8 @@ TEST(Dfsph, KeepsAHydrostaticColumnAtRest) {
     Simulation sim(dir);
     const RunSummary r = sim.run();
     EXPECT_GT(r.steps, 300);
-    auto& s = sim.system();
-    sim.evaluate(Scalar(2e-3));
+    auto& s = sim.scene();
+    sim.evaluate(sim.scene().time, Scalar(2e-3));
     const double rho0 = s.physics.rho0;
     double maxErr = 0, vMax = 0, v2 = 0, pBottom = 0;
     int nBottom = 0;
@@ -338,7 +337,7 @@ TEST(Dfsph, KeepsAHydrostaticColumnAtRest) {
             v[i] += dt * s.fluid.acceleration()[i];
             x[i] += dt * v[i];
         }
-        sim.evaluate(dt);
+        sim.evaluate(sim.scene().time, dt);
         for (std::size_t i = 0; i < s.fluid.size(); ++i) {
             const double y = x[i].y(), p = s.fluid.pressure()[i];
             if (x[i].x() < 0.05 || x[i].x() > 0.15) continue;

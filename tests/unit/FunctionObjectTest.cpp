@@ -13,13 +13,13 @@ namespace fs = std::filesystem;
 namespace {
 
 // A block of fluid on a lattice of spacing dx = 0.01 in [0, nx dx) × [0, ny dx) (2D).
-struct Scene {
-    SphSystem s;
+struct TestScene {
+    Scene s;
     std::unique_ptr<Kernel> kernel;
     test::TempDir dir{"spindrift-fo-test"};
     std::vector<std::unique_ptr<Dictionary>> dicts;
 
-    Scene(int nx, int ny, Vec3 gravity = Vec3(0, -9.81, 0)) {
+    TestScene(int nx, int ny, Vec3 gravity = Vec3(0, -9.81, 0)) {
         s.physics = test::physicsFor(2, 0.01, 2.6);
         s.physics.gravity = gravity;
         kernel = test::createModel<Kernel>("type wendlandC2;", s.physics);
@@ -52,7 +52,7 @@ struct Scene {
 };
 
 TEST(Probes, ShepardInterpolationIsExactForConstantsAndAccurateForLinearFields) {
-    Scene sc(20, 20, Vec3::Zero());
+    TestScene sc(20, 20, Vec3::Zero());
     auto& x = sc.s.fluid.position();
     for (std::size_t i = 0; i < x.size(); ++i) {
         sc.s.fluid.pressure()[i] = 1000 + 500 * x[i][0] - 300 * x[i][1]; // linear
@@ -85,7 +85,7 @@ TEST(Probes, ShepardInterpolationIsExactForConstantsAndAccurateForLinearFields) 
 }
 
 TEST(Probes, UnknownFieldIsAnInputErrorNamingTheCaseFields) {
-    Scene sc(5, 5);
+    TestScene sc(5, 5);
     auto probes = sc.create("p", "type probes; fields (pressure vorticity); probeLocations ((0 0 0));");
     try {
         probes->start(sc.s, 0);
@@ -98,7 +98,7 @@ TEST(Probes, UnknownFieldIsAnInputErrorNamingTheCaseFields) {
 }
 
 TEST(SurgeFront, FurthestParticleNearTheFloorWithEnoughNeighbours) {
-    Scene sc(10, 20); // x < 0.1, y < 0.2
+    TestScene sc(10, 20); // x < 0.1, y < 0.2
     auto& x = sc.s.fluid.position();
     // a particle of the top row moved far ahead (above the floor band), and an isolated drop on
     // the floor further still
@@ -124,7 +124,7 @@ TEST(SurgeFront, FurthestParticleNearTheFloorWithEnoughNeighbours) {
 }
 
 TEST(WaterLevel, FindsTheFreeSurfaceOfALatticeBlockAndTheBaseWhenDry) {
-    Scene sc(20, 30); // surface at H = 0.3, width 0.2
+    TestScene sc(20, 30); // surface at H = 0.3, width 0.2
     auto level = sc.create("level", "type waterLevel; gaugeLocations ((0.1 0 0) (0.5 0 0)); writeControl timeStep;");
     level->start(sc.s, 0);
     const auto r = sc.rows("level");
@@ -135,12 +135,12 @@ TEST(WaterLevel, FindsTheFreeSurfaceOfALatticeBlockAndTheBaseWhenDry) {
 }
 
 TEST(WaterLevel, NeedsGravity) {
-    Scene sc(5, 5, Vec3::Zero());
+    TestScene sc(5, 5, Vec3::Zero());
     EXPECT_THROW(sc.create("level", "type waterLevel; gaugeLocations ((0 0 0));"), InputError);
 }
 
 TEST(FieldStats, EnergyMomentumDensityErrorSpacingAndBounds) {
-    Scene sc(10, 10, Vec3::Zero());
+    TestScene sc(10, 10, Vec3::Zero());
     auto& s = sc.s;
     const double m = s.fluid.particleMass();
     double ke = 0, px = 0, py = 0, vmax = 0;
@@ -185,7 +185,7 @@ TEST(FieldStats, EnergyMomentumDensityErrorSpacingAndBounds) {
 }
 
 TEST(FieldStats, RunTimeSamplingWritesOneRowPerInterval) {
-    Scene sc(4, 4, Vec3::Zero());
+    TestScene sc(4, 4, Vec3::Zero());
     auto stats = sc.create("stats", "type fieldStats; writeControl runTime; writeInterval 0.1;");
     auto every3 = sc.create("every3", "type fieldStats; writeInterval 3;");
     stats->start(sc.s, 0);
@@ -204,7 +204,7 @@ TEST(FieldStats, RunTimeSamplingWritesOneRowPerInterval) {
 }
 
 TEST(SolverPerformance, SummarisesTheCoreRows) {
-    Scene sc(4, 4, Vec3::Zero());
+    TestScene sc(4, 4, Vec3::Zero());
     const fs::path core = sc.dir.path() / "postProcessing" / "solverPerformance" / "0";
     fs::create_directories(core);
     const std::string coreRows = "# Time\titerations\tconverged\tmaxDensityError\tavgDensityError\n"
@@ -228,7 +228,7 @@ TEST(SolverPerformance, SummarisesTheCoreRows) {
 }
 
 TEST(FunctionObjects, UnknownKeywordIsAnError) {
-    Scene sc(4, 4);
+    TestScene sc(4, 4);
     EXPECT_THROW(sc.create("stats", "type fieldStats; writeIntervall 3;"), InputError);
 }
 

@@ -26,7 +26,7 @@ TEST(HydrostaticTank2D, SettlesToHydrostaticPressure) {
     const RunSummary r = sim.run();
     EXPECT_GT(r.steps, 100);
 
-    const auto& s = sim.system();
+    const auto& s = sim.scene();
     const double dx = s.physics.particleSpacing, rho0 = s.physics.rho0, g = 9.81, H = 0.3, width = 0.2;
     // every particle stays inside the tank
     for (const auto& x : s.fluid.position()) {
@@ -66,7 +66,7 @@ TEST(HydrostaticTank2D, SettlesToHydrostaticPressure) {
     EXPECT_LT(vMax, 0.1); // residual sloshing, < 6 % of sqrt(g H)
     // the run wrote its time directories and a collection
     EXPECT_TRUE(fs::exists(caseDir / "0" / "fluid.vtp"));
-    EXPECT_TRUE(fs::exists(caseDir / "0" / "boundary.vtp"));
+    EXPECT_TRUE(fs::exists(caseDir / "0" / "tank.vtp")); // the wall system "tank"
     EXPECT_TRUE(fs::exists(caseDir / "1.5" / "fluid.vtp"));
     EXPECT_TRUE(fs::exists(caseDir / "hydrostaticTank2D.pvd"));
 }

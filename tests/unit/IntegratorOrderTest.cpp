@@ -45,14 +45,14 @@ struct Result {
 
 // One particle integrated to T with step dt; 'dict' is the integrator's dictionary text.
 Result integrate(const std::string& dict, const Problem& p, double dt, double T = 1.0) {
-    SphSystem s;
+    Scene s;
     s.physics = test::physicsFor(3);
     s.fluid.resize(1);
     s.fluid.position()[0] = p.x0;
     s.fluid.velocity()[0] = p.v0;
     auto integrator = test::createModel<Integrator>(dict, s.physics);
     integrator->initialise(s);
-    auto evaluate = [&] { s.fluid.acceleration()[0] = p.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
+    auto evaluate = [&](double) { s.fluid.acceleration()[0] = p.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
     const int steps = int(std::lround(T / dt));
     for (int n = 0; n < steps; ++n) integrator->step(s, dt, evaluate);
     return {s.fluid.position()[0], s.fluid.velocity()[0]};
@@ -138,7 +138,7 @@ TEST(PereaCorderoIntegrator, PaperHistoryIsInconsistentOnFreeFall) {
 TEST(PereaCorderoIntegrator, HistoryFieldsOnlyWhenChosenAndRestartExact) {
     auto physics = test::physicsFor(3);
     {
-        SphSystem s;
+        Scene s;
         s.physics = physics;
         s.fluid.resize(1);
         test::createModel<Integrator>("type velocityVerlet;", physics)->initialise(s);
@@ -149,19 +149,19 @@ TEST(PereaCorderoIntegrator, HistoryFieldsOnlyWhenChosenAndRestartExact) {
     // fields into a fresh system with a fresh integrator, as a restart does) and 23 more
     const double dt = 0.01;
     const std::string dict = "type pereaCordero;";
-    auto makeSystem = [&](SphSystem& s) {
+    auto makeSystem = [&](Scene& s) {
         s.physics = physics;
         s.fluid.resize(2);
         s.fluid.position() = {Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
         s.fluid.velocity() = {Vec3(0, omega, 0), Vec3(0.3, 0, 0)};
     };
-    auto evaluateFor = [&](SphSystem& s) {
-        return [&s] {
+    auto evaluateFor = [&](Scene& s) {
+        return [&s](double) {
             for (std::size_t i = 0; i < 2; ++i)
                 s.fluid.acceleration()[i] = dampedOscillator.acceleration(s.fluid.position()[i], s.fluid.velocity()[i]);
         };
     };
-    SphSystem whole;
+    Scene whole;
     makeSystem(whole);
     auto integrator = test::createModel<Integrator>(dict, physics);
     integrator->initialise(whole);
@@ -174,12 +174,12 @@ TEST(PereaCorderoIntegrator, HistoryFieldsOnlyWhenChosenAndRestartExact) {
     }
     for (int n = 0; n < 40; ++n) integrator->step(whole, dt, evaluateFor(whole));
 
-    SphSystem first;
+    Scene first;
     makeSystem(first);
     auto i1 = test::createModel<Integrator>(dict, physics);
     i1->initialise(first);
     for (int n = 0; n < 17; ++n) i1->step(first, dt, evaluateFor(first));
-    SphSystem second;
+    Scene second;
     makeSystem(second);
     auto i2 = test::createModel<Integrator>(dict, physics);
     i2->initialise(second);

@@ -27,14 +27,14 @@ const Problem oscillator{[](const Vec3& x, const Vec3&) { return Vec3(-omega * o
 
 // Position error at t = T after integrating with step dt.
 double positionError(const std::string& integratorName, const Problem& p, double dt, double T = 1.0) {
-    SphSystem s;
+    Scene s;
     s.physics = test::physicsFor(3);
     s.fluid.resize(1);
     s.fluid.position()[0] = p.x0;
     s.fluid.velocity()[0] = p.v0;
     auto integrator = test::createModel<Integrator>("type " + integratorName + ";", s.physics);
     integrator->initialise(s);
-    auto evaluate = [&] { s.fluid.acceleration()[0] = p.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
+    auto evaluate = [&](double) { s.fluid.acceleration()[0] = p.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
     const int steps = int(std::lround(T / dt));
     for (int n = 0; n < steps; ++n) integrator->step(s, dt, evaluate);
     return (s.fluid.position()[0] - p.exactPosition(steps * dt)).norm();
@@ -73,13 +73,13 @@ TEST(Integrators, LeapfrogIsSecondOrder) {
 
 TEST(Integrators, LeapfrogConservesOscillatorEnergyOverLongTimes) {
     // symplectic: the energy error stays bounded over 1000 periods instead of drifting
-    SphSystem s;
+    Scene s;
     s.physics = test::physicsFor(3);
     s.fluid.resize(1);
     s.fluid.position()[0] = oscillator.x0;
     s.fluid.velocity()[0] = oscillator.v0;
     auto integrator = test::createModel<Integrator>("type leapfrog;", s.physics);
-    auto evaluate = [&] { s.fluid.acceleration()[0] = oscillator.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
+    auto evaluate = [&](double) { s.fluid.acceleration()[0] = oscillator.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
     auto energy = [&] { return 0.5 * s.fluid.velocity()[0].squaredNorm() + 0.5 * omega * omega * s.fluid.position()[0].squaredNorm(); };
     const double e0 = energy();
     double worst = 0;

@@ -3,7 +3,7 @@
 // pressures differ), no force under uniform pressure, a hand computation, and the momentum
 // drift of the difference part (reported).
 #include "../../plugins/pressure/isobaric/IsobaricBlend.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "TestSupport.hpp"
 
 #include <gtest/gtest.h>
@@ -14,10 +14,10 @@ using namespace spindrift;
 
 namespace {
 
-struct Scene {
-    SphSystem s;
+struct TestScene {
+    Scene s;
     std::unique_ptr<Kernel> kernel;
-    explicit Scene(int dim) {
+    explicit TestScene(int dim) {
         s.physics = test::physicsFor(dim, 0.01, 2.6);
         kernel = test::createModel<Kernel>("type wendlandC2;", s.physics);
     }
@@ -38,11 +38,9 @@ struct Scene {
         std::vector<Vec3> wall;
         for (int layer = 0; layer < 3; ++layer)
             for (int i = -3; i < n + 3; ++i) wall.emplace_back((i + 0.5) * dx, -(layer + 0.5) * dx, 0);
-        s.boundary.resize(wall.size());
-        s.boundary.position() = wall;
-        s.search.setBoundary(wall);
+        test::addWallSystem(s, "floor", wall);
         s.search.build(s.fluid.position());
-        auto b = test::createModel<BoundaryModel>("type akinci;", s.physics);
+        auto b = test::createModel<BoundaryModel>("type akinci; volume adaptive;", s.physics);
         b->initialise(s);
         return b;
     }
@@ -122,7 +120,7 @@ TEST(Isobaric, RejectsAnIsobaricFactorOutsideItsRange) {
 
 TEST(Isobaric, EqualsWcsphWhenDeltaVanishesAndPressuresDiffer) {
     for (int dim : {2, 3}) {
-        Scene sc(dim);
+        TestScene sc(dim);
         const int n = dim == 2 ? 16 : 8;
         sc.block(n, 0.2, 1.02);
         auto boundary = dim == 2 ? sc.floor(n) : nullptr;
@@ -151,7 +149,7 @@ TEST(Isobaric, EqualsWcsphWhenDeltaVanishesAndPressuresDiffer) {
 
 TEST(Isobaric, NoForceInAUniformPressureNeighbourhood) {
     for (int dim : {2, 3}) {
-        Scene sc(dim);
+        TestScene sc(dim);
         sc.block(dim == 2 ? 12 : 7, 0.15);
         auto iso = test::createModel<PressureModel>("type isobaric; delta 0.05; soundSpeed 20;", sc.s.physics);
         auto wcsph = test::createModel<PressureModel>("type wcsph; soundSpeed 20;", sc.s.physics);
@@ -180,7 +178,7 @@ TEST(Isobaric, NoExtraWallPushUnderHydrostaticPressure) {
     const double g = 9.81;
     std::map<std::string, double> worst;
     for (const std::string delta : {"wcsph", "1e-12", "4.5e-3", "0.05", "0.25"}) {
-        Scene sc(2);
+        TestScene sc(2);
         const int n = 24, rows = 12;
         const double dx = sc.s.physics.particleSpacing, H = rows * dx;
         sc.s.physics.gravity = Vec3(0, -g, 0);
@@ -210,7 +208,7 @@ TEST(Isobaric, NoExtraWallPushUnderHydrostaticPressure) {
 TEST(Isobaric, MatchesAHandComputation) {
     // particle 0 at the origin with four neighbours whose pressures fall in the three regimes
     // (𝒫 = 0: α = 2; 𝒫 in the blend zone; 𝒫 beyond the root: α = 0); densities set by hand
-    Scene sc(2);
+    TestScene sc(2);
     const double dx = 0.01, delta = 0.1;
     const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(dx, 0, 0), Vec3(0, 0.8 * dx, 0), Vec3(-1.3 * dx, 0.4 * dx, 0),
                                  Vec3(0.5 * dx, -1.6 * dx, 0)};
@@ -243,7 +241,7 @@ TEST(Isobaric, MomentumDriftOfTheDifferencePart) {
     // A slightly compressed, jittered block: pressures close to each other, so many pairs fall
     // in the blend zone. The β (sum) part is pairwise antisymmetric, the α (difference) part is
     // not: report the net force relative to the total force magnitude.
-    Scene sc(2);
+    TestScene sc(2);
     sc.block(20, 0.03, 1.03);
     const double m = sc.s.fluid.particleMass();
     auto drift = [&](const std::string& dict, double* blendFraction) {

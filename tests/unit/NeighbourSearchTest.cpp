@@ -41,7 +41,7 @@ TEST_P(NeighbourSearchTest, MatchesBruteForce) {
     Vec3 hi = Vec3::Constant(extent);
     if (dim == 2) hi[2] = 0;
     search.setup(h, dim, Vec3::Zero(), hi);
-    search.setBoundary(wall);
+    search.setWalls({{&wall, false}});
     search.build(fluid);
     std::size_t pairs = 0;
     for (std::size_t i = 0; i < fluid.size(); ++i) {
@@ -49,13 +49,13 @@ TEST_P(NeighbourSearchTest, MatchesBruteForce) {
         std::set<Index> got(ff.begin(i), ff.end(i));
         ASSERT_EQ(got.size(), ff.count(i)) << "duplicate neighbours of " << i;
         ASSERT_EQ(got, bruteForce(fluid, fluid[i], h, long(i))) << "fluid neighbours of " << i;
-        const auto& fb = search.boundaryNeighbours();
+        const auto& fb = search.wallNeighbours(0);
         std::set<Index> gotB(fb.begin(i), fb.end(i));
         ASSERT_EQ(gotB, bruteForce(wall, fluid[i], h, -1)) << "wall neighbours of " << i;
         pairs += got.size();
     }
     EXPECT_GT(pairs, fluid.size()); // the test is not vacuous
-    const NeighbourList bb = search.boundaryBoundaryList();
+    const NeighbourList bb = search.wallWallList(0, 0);
     for (std::size_t b = 0; b < wall.size(); ++b) {
         std::set<Index> got(bb.begin(b), bb.end(b));
         ASSERT_EQ(got, bruteForce(wall, wall[b], h, long(b)));
@@ -71,11 +71,12 @@ TEST_P(NeighbourSearchTest, ListsIndependentOfThreadCountAndSplit) {
     const auto pts = randomPoints(5000, dim, 1.0, 3);
     NeighbourSearch search;
     search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, dim == 3 ? 1 : 0));
-    search.setBoundary(randomPoints(1000, dim, 1.0, 4));
+    const auto wall = randomPoints(1000, dim, 1.0, 4);
+    search.setWalls({{&wall, false}});
     const int saved = omp_get_max_threads();
     omp_set_num_threads(1);
     search.build(pts);
-    const NeighbourList fluidOne = search.fluidNeighbours(), wallOne = search.boundaryNeighbours();
+    const NeighbourList fluidOne = search.fluidNeighbours(), wallOne = search.wallNeighbours(0);
     ASSERT_GT(wallOne.totalPairs(), pts.size() / 10); // not vacuous
     for (int threads : {2, 3}) {
         omp_set_num_threads(threads);
@@ -83,8 +84,8 @@ TEST_P(NeighbourSearchTest, ListsIndependentOfThreadCountAndSplit) {
             search.build(pts);
             EXPECT_EQ(fluidOne.offsets, search.fluidNeighbours().offsets) << threads << " threads, build " << build;
             EXPECT_EQ(fluidOne.indices, search.fluidNeighbours().indices) << threads << " threads, build " << build;
-            EXPECT_EQ(wallOne.offsets, search.boundaryNeighbours().offsets) << threads << " threads, build " << build;
-            EXPECT_EQ(wallOne.indices, search.boundaryNeighbours().indices) << threads << " threads, build " << build;
+            EXPECT_EQ(wallOne.offsets, search.wallNeighbours(0).offsets) << threads << " threads, build " << build;
+            EXPECT_EQ(wallOne.indices, search.wallNeighbours(0).indices) << threads << " threads, build " << build;
         }
         // the split the next build takes: contiguous ranges tiling the particles, by speeds of mean 1
         std::size_t next = 0;
@@ -145,7 +146,7 @@ TEST_P(NeighbourSearchTest, PermutedListsEqualABuildOnTheReorderedPoints) {
         NeighbourSearch relabelled, fresh;
         for (auto* s : {&relabelled, &fresh}) {
             s->setup(h, dim, Vec3::Zero(), hi, periodic);
-            s->setBoundary(wall);
+            s->setWalls({{&wall, false}});
         }
         relabelled.build(fluid);
         const auto order = relabelled.sortOrder(fluid);
@@ -155,8 +156,8 @@ TEST_P(NeighbourSearchTest, PermutedListsEqualABuildOnTheReorderedPoints) {
         fresh.build(sorted);
         EXPECT_EQ(relabelled.fluidNeighbours().offsets, fresh.fluidNeighbours().offsets);
         EXPECT_EQ(relabelled.fluidNeighbours().indices, fresh.fluidNeighbours().indices);
-        EXPECT_EQ(relabelled.boundaryNeighbours().offsets, fresh.boundaryNeighbours().offsets);
-        EXPECT_EQ(relabelled.boundaryNeighbours().indices, fresh.boundaryNeighbours().indices);
+        EXPECT_EQ(relabelled.wallNeighbours(0).offsets, fresh.wallNeighbours(0).offsets);
+        EXPECT_EQ(relabelled.wallNeighbours(0).indices, fresh.wallNeighbours(0).indices);
         EXPECT_GT(fresh.fluidNeighbours().totalPairs(), 5 * fluid.size()); // not vacuous
         // the grid too: the same points in the same order around any place
         for (const Vec3& p : {Vec3(0.31, 0.33, dim == 3 ? 0.5 : 0), Vec3(0.5, 0.5, dim == 3 ? 0.5 : 0)}) {
@@ -182,10 +183,10 @@ TEST(NeighbourSearch, WorkRangesTileTheParticlesWithEqualWork) {
         for (int i = 0; i < 400; ++i) wall.push_back(Vec3(i / 400.0, -0.005 * k, 0));
     NeighbourSearch search;
     search.setup(0.04, 2, Vec3(0, -0.1, 0), Vec3(1, 1, 0));
-    search.setBoundary(wall);
+    search.setWalls({{&wall, false}});
     search.build(fluid);
     const auto& ff = search.fluidNeighbours();
-    const auto& fb = search.boundaryNeighbours();
+    const auto& fb = search.wallNeighbours(0);
     for (int threads : {1, 2, 3, 4}) {
         // a range of 'threads' as computed for the thread count of the last build, or an even split
         std::size_t next = 0;
@@ -330,11 +331,11 @@ TEST_P(NeighbourSearchTest, GridCoversTheOccupiedCellsOnly) {
     NeighbourSearch search;
     search.setup(h, dim, Vec3::Zero(), Vec3(4, 4, dim == 3 ? 4 : 0));
     const double latticeCells = std::pow(std::ceil(4 / h) + 1, dim);
-    search.setBoundary(wall);
-    EXPECT_LT(double(search.boundaryGrid().cellCount()), latticeCells / 50);
+    search.setWalls({{&wall, false}});
+    EXPECT_LT(double(search.wallGrid(0).cellCount()), latticeCells / 50);
     search.build(fluid);
     const auto& ff = search.fluidNeighbours();
-    const auto& fb = search.boundaryNeighbours();
+    const auto& fb = search.wallNeighbours(0);
     std::size_t wallPairs = 0;
     for (std::size_t i = 0; i < fluid.size(); ++i) {
         ASSERT_EQ(std::set<Index>(ff.begin(i), ff.end(i)), bruteForce(fluid, fluid[i], h, long(i))) << i;
@@ -398,5 +399,68 @@ TEST_P(NeighbourSearchTest, PeriodicAxesUseTheNearestImage) {
 
 INSTANTIATE_TEST_SUITE_P(Dimensions, NeighbourSearchTest, testing::Values(2, 3),
                          [](const auto& info) { return std::to_string(info.param) + "D"; });
+
+// Several wall systems, one of them moving: every list matches brute force after the moving
+// wall's points change (its grid is rebuilt at every build, the fixed wall's is not), the
+// transpose lists every fluid neighbour of a wall particle in ascending order, and the wall–wall
+// lists pair the two walls.
+TEST(NeighbourSearch, WallSystemsFixedAndMovingWithTransposes) {
+    const int dim = 2;
+    const Scalar h = 0.06;
+    auto fluid = randomPoints(2000, dim, 1.0, 11);
+    const auto fixedWall = randomPoints(500, dim, 1.0, 12);
+    auto movingWall = randomPoints(300, dim, 0.5, 13);
+    NeighbourSearch search;
+    search.setup(h, dim, Vec3::Zero(), Vec3(1.5, 1.5, 0));
+    search.setWalls({{&fixedWall, false}, {&movingWall, true}});
+    ASSERT_EQ(search.wallCount(), 2u);
+    for (int move = 0; move < 3; ++move) {
+        for (auto& x : movingWall) x += Vec3(0.2, 0.1, 0); // the wall moves between builds
+        search.build(fluid);
+        std::size_t pairs = 0;
+        for (std::size_t i = 0; i < fluid.size(); ++i) {
+            const auto& f0 = search.wallNeighbours(0);
+            const auto& f1 = search.wallNeighbours(1);
+            ASSERT_EQ(std::set<Index>(f0.begin(i), f0.end(i)), bruteForce(fixedWall, fluid[i], h, -1)) << i;
+            ASSERT_EQ(std::set<Index>(f1.begin(i), f1.end(i)), bruteForce(movingWall, fluid[i], h, -1)) << i;
+            ASSERT_EQ(search.wallNeighbourCount(i), f0.count(i) + f1.count(i));
+            pairs += f1.count(i);
+        }
+        EXPECT_GT(pairs, 100u) << "the moving wall is among the fluid (not vacuous)";
+        const auto& wallFluid = search.wallFluidNeighbours(1);
+        ASSERT_EQ(wallFluid.size(), movingWall.size());
+        for (std::size_t b = 0; b < movingWall.size(); ++b) {
+            std::vector<Index> row(wallFluid.begin(b), wallFluid.end(b));
+            EXPECT_TRUE(std::is_sorted(row.begin(), row.end()));
+            ASSERT_EQ(std::set<Index>(row.begin(), row.end()), bruteForce(fluid, movingWall[b], h, -1)) << b;
+        }
+    }
+    const NeighbourList across = search.wallWallList(0, 1);
+    for (std::size_t b = 0; b < fixedWall.size(); ++b)
+        ASSERT_EQ(std::set<Index>(across.begin(b), across.end(b)), bruteForce(movingWall, fixedWall[b], h, -1)) << b;
+}
+
+// A search made ahead at predicted positions is recognised when the particles get there, also
+// after the particles are re-sorted with it, and forgotten after an ordinary build.
+TEST(NeighbourSearch, BuildAheadIsKeptUntilTheNextBuild) {
+    const int dim = 2;
+    auto fluid = randomPoints(1500, dim, 1.0, 21);
+    NeighbourSearch search;
+    search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, 0));
+    search.build(fluid);
+    EXPECT_FALSE(search.builtAt(fluid));
+    auto ahead = fluid;
+    for (auto& x : ahead) x += Vec3(0.001, -0.002, 0);
+    search.buildAhead(ahead);
+    EXPECT_TRUE(search.builtAt(ahead));
+    EXPECT_FALSE(search.builtAt(fluid));
+    const auto order = search.sortOrder(ahead);
+    std::vector<Vec3> sorted(ahead.size());
+    for (std::size_t i = 0; i < ahead.size(); ++i) sorted[i] = ahead[order[i]];
+    search.permute(order);
+    EXPECT_TRUE(search.builtAt(sorted));
+    search.build(sorted);
+    EXPECT_FALSE(search.builtAt(sorted));
+}
 
 } // namespace

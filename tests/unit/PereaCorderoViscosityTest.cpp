@@ -3,7 +3,7 @@
 // invariance (a uniformly translating block), consistency with ν∇²v, the damping factor Γ,
 // and XSPH's velocity change against a hand computation. The paper's printed form is shown to
 // fail both conservation and Galilean invariance.
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "TestSupport.hpp"
 
 #include <gtest/gtest.h>
@@ -13,11 +13,11 @@ using namespace spindrift;
 
 namespace {
 
-struct Scene {
-    SphSystem s;
+struct TestScene {
+    Scene s;
     std::unique_ptr<Kernel> kernel;
     std::unique_ptr<PressureModel> density;
-    Scene(int dim, const std::string& kernelName, double nu = 1e-3, double supportRatio = 2.6) {
+    TestScene(int dim, const std::string& kernelName, double nu = 1e-3, double supportRatio = 2.6) {
         s.physics = test::physicsFor(dim, 0.01, supportRatio);
         s.physics.nu = nu;
         kernel = test::createModel<Kernel>("type " + kernelName + ";", s.physics);
@@ -66,7 +66,7 @@ const std::vector<std::string> kernels = {"sinc2", "poly6Spiky", "cubicSpline"};
 TEST(PereaCorderoViscosity, DifferenceFormAndXsphConserveMomentumThePaperFormDoesNot) {
     for (int dim : {2, 3})
         for (const auto& k : kernels) {
-            Scene sc(dim, k);
+            TestScene sc(dim, k);
             sc.block(dim == 2 ? 16 : 8, 0.1, 1.0);
             sc.accelerate("type pereaCordero; dampingScale 0.5;");
             EXPECT_GT(sc.maxAcceleration(), 0.0);
@@ -87,7 +87,7 @@ TEST(PereaCorderoViscosity, DifferenceFormAndXsphConserveMomentumThePaperFormDoe
 TEST(PereaCorderoViscosity, UniformTranslationFeelsNoForceInTheDifferenceForm) {
     for (int dim : {2, 3})
         for (const auto& k : kernels) {
-            Scene sc(dim, k);
+            TestScene sc(dim, k);
             sc.block(dim == 2 ? 12 : 7, 0.1, 0.0);
             for (auto& v : sc.s.fluid.velocity()) v = Vec3(1.5, -0.5, dim == 3 ? 0.7 : 0.0);
             sc.accelerate("type pereaCordero; dampingScale 0.5;");
@@ -105,7 +105,7 @@ TEST(PereaCorderoViscosity, UniformTranslationFeelsNoForceInTheDifferenceForm) {
 // a_x / (ν∇²v)_x at the centre of a regular lattice for v = (c y², 0, 0) (Γ ≈ 1)
 double laplacianFactor(int dim, const std::string& kernel, double supportRatio) {
     const double c = 3.0, nu = 1e-3;
-    Scene sc(dim, kernel, nu, supportRatio);
+    TestScene sc(dim, kernel, nu, supportRatio);
     const int n = dim == 2 ? 16 : 11;
     sc.block(n, 0.0, 0.0);
     const Vec3 centre = Vec3::Constant(n * 0.01 / 2 + 0.005);
@@ -151,7 +151,7 @@ TEST(PereaCorderoViscosity, DifferenceFormApproximatesNuLaplacianOfV) {
 // viscosity than the paper's to stay stable (its README).
 TEST(PereaCorderoViscosity, CheckerboardModeAtTwiceTheSpacing) {
     for (const std::string k : {"sinc2", "poly6Spiky", "cubicSpline"}) {
-        Scene sc(2, k, 1e-3, 2.0);
+        TestScene sc(2, k, 1e-3, 2.0);
         const int n = 12;
         sc.block(n, 0.0, 0.0);
         const double dx = sc.s.physics.particleSpacing;
@@ -176,7 +176,7 @@ TEST(PereaCorderoViscosity, CheckerboardModeAtTwiceTheSpacing) {
 TEST(PereaCorderoViscosity, DampingFactorGammaAgainstAHandComputation) {
     // two particles: a_0 = m ½(μ/ρ0² + μ/ρ1²)(v1 − v0) ∇²W(r) Γ,
     // Γ = exp(−2 |v1 − v0| / (U (ρ0 ρ1/ρ_ref²) (r/h)))
-    Scene sc(2, "sinc2");
+    TestScene sc(2, "sinc2");
     test::fillLattice(sc.s, *sc.kernel, Vec3::Zero(), Vec3(0.02, 0.01, 0));
     const double r = 0.013, h = sc.s.physics.supportRadius, rhoRef = sc.s.physics.rho0, m = sc.s.fluid.particleMass();
     sc.s.fluid.position() = {Vec3(0, 0, 0), Vec3(r * 0.6, r * 0.8, 0)};
@@ -208,7 +208,7 @@ TEST(PereaCorderoViscosity, DampingFactorGammaAgainstAHandComputation) {
 
 TEST(PereaCorderoViscosity, DissipatesWithThePositiveViscosityKernelLaplacian) {
     // with poly6Spiky the laplacian is Müller's viscosity kernel's (≥ 0): every pair dissipates
-    Scene sc(2, "poly6Spiky");
+    TestScene sc(2, "poly6Spiky");
     sc.block(14, 0.1, 1.0);
     const auto& a = sc.accelerate("type pereaCordero; dampingScale 0.5;");
     double power = 0;
@@ -229,7 +229,7 @@ TEST(PereaCorderoViscosity, OptionsAndErrors) {
 
 TEST(Xsph, VelocityChangeOverAStepMatchesAHandComputation) {
     // Δv_i = dt a_i = c Σ_j (2 m / (ρ_i + ρ_j)) (v_j − v_i) W_ij, and kinetic energy decreases
-    Scene sc(2, "cubicSpline");
+    TestScene sc(2, "cubicSpline");
     sc.block(12, 0.1, 1.0);
     const double dt = 2e-4, c = 0.05;
     const auto& a = sc.accelerate("type xsph; c 0.05;", dt);

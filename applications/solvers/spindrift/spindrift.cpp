@@ -42,11 +42,14 @@ void listModels(const std::string& only) {
 }
 
 void banner(const Simulation& sim, int threads) {
-    const auto& s = const_cast<Simulation&>(sim).system();
+    const auto& s = const_cast<Simulation&>(sim).scene();
     log::Line() << "Case      : " << sim.caseFiles().dir.string();
     log::Line() << "Threads   : " << threads;
-    log::Line() << "Particles : " << s.fluid.size() << " fluid, " << s.boundary.size() << " boundary ("
-                << s.physics.dimension << "D, spacing " << s.physics.particleSpacing << " m, support "
+    std::ostringstream walls;
+    for (const auto& w : s.walls)
+        walls << w.name() << " " << w.size() << (w.moving() ? " moving" : "") << ", ";
+    log::Line() << "Particles : " << s.fluid.size() << " fluid, " << s.wallParticles() << " wall ("
+                << walls.str() << s.physics.dimension << "D, spacing " << s.physics.particleSpacing << " m, support "
                 << s.physics.supportRadius << " m)";
     log::Line() << "Schemes   : " << sim.schemesSummary();
     std::string libs;
@@ -95,13 +98,13 @@ int main(int argc, char** argv) {
         banner(sim, threads);
         if (vm.count("dryRun")) {
             sim.writeInitialState();
-            log::info("Dry run: wrote time " + CaseWriter::timeName(sim.system().time) + "; End");
+            log::info("Dry run: wrote time " + CaseWriter::timeName(sim.scene().time) + "; End");
             return 0;
         }
         const RunSummary r = sim.run();
         std::ostringstream o;
         o << "\nEnd: " << r.steps << " steps to time " << r.endTime << " in " << r.wallSeconds << " s wall time ("
-          << r.fluidParticles << " fluid + " << r.boundaryParticles << " boundary particles, "
+          << r.fluidParticles << " fluid + " << r.wallParticles << " wall particles, "
           << (r.steps > 0 ? 1e6 * r.wallSeconds / (double(r.steps) * std::max<std::size_t>(r.fluidParticles, 1)) : 0.0)
           << " us per particle-step), " << r.writes << " times written, max density error "
           << 100 * r.maxDensityError << "%";

@@ -10,13 +10,37 @@
 //
 //   forces { vorticity { type vorticityConfinement; epsilon 0.01; } }
 #include "Plugin.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "ViscosityModel.hpp"
 
 #include <Eigen/Geometry>
 
 namespace {
 using namespace spindrift;
+
+// ω_i = Σ_j V_j (v_i − v_j) × ∇_i W_ij
+struct CurlTerm {
+    using Sum = Vec3;
+    static constexpr bool usesGradient = true;
+    using Particle = Vec3; // v_i
+    const Vec3* v;
+    const Scalar* rho;
+    Scalar m;
+    Particle particle(std::size_t i) const { return v[i]; }
+    void fluid(const Vec3& vi, const Pair& q, Sum& sum) const { sum += (m / rho[q.j]) * (vi - v[q.j]).cross(q.gradW); }
+};
+
+// η_i = Σ_j V_j (|ω_j| − |ω_i|) ∇_i W_ij
+struct VorticityGradientTerm {
+    using Sum = Vec3;
+    static constexpr bool usesGradient = true;
+    using Particle = Scalar; // |ω_i|
+    const Vec3* omega;
+    const Scalar* rho;
+    Scalar m;
+    Particle particle(std::size_t i) const { return omega[i].norm(); }
+    void fluid(Scalar wi, const Pair& q, Sum& sum) const { sum += ((m / rho[q.j]) * (omega[q.j].norm() - wi)) * q.gradW; }
+};
 
 class VorticityConfinement final : public ExtraForce {
 public:
@@ -29,40 +53,23 @@ public:
             throw InputError(c.dict.locationOf("epsilon"), "epsilon must not be negative", "epsilon");
     }
 
-    void initialise(SphSystem& s) override { omega_ = &s.fluid.addVector("vorticity", {true, false}); }
+    void initialise(Scene& s) override { omega_ = &s.fluid.addVector("vorticity", {true, false}); }
 
-    void addAcceleration(SphSystem& s, Scalar) override {
-        const auto& kt = s.kernel;
-        const Scalar m = s.fluid.particleMass();
+    void addAcceleration(Scene& s, Scalar) override {
+        const Scalar m = s.fluid.particleMass(), h = s.constants.supportRadius, eps = epsilon_;
         const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
-        const auto& rho = s.fluid.density();
-        const auto& ff = s.search.fluidNeighbours();
-        auto& a = s.fluid.acceleration();
+        const Scalar* rho = s.fluid.density().data();
         auto& w = *omega_;
-        const std::size_t n = x.size();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
-            Vec3 curl = Vec3::Zero();
-            forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                curl += (m / rho[j]) * (v[i] - v[j]).cross(kt.gradWSq(rij, r2));
-            });
-            w[i] = curl;
-        }
+        forEachPairSum(s, x, CurlTerm{s.fluid.velocity().data(), rho, m},
+                       [&](std::size_t i, const auto&, const Vec3& curl) { w[i] = curl; });
         if (epsilon_ == 0) return;
-        const Scalar eps = epsilon_, h = kt.supportRadius();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
-            const Scalar wi = w[i].norm();
-            Vec3 eta = Vec3::Zero();
-            forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                eta += ((m / rho[j]) * (w[j].norm() - wi)) * kt.gradWSq(rij, r2);
-            });
+        auto& a = s.fluid.acceleration();
+        forEachPairSum(s, x, VorticityGradientTerm{w.data(), rho, m}, [&](std::size_t i, Scalar wi, const Vec3& eta) {
             // N = η/|η| is undefined where |ω| is uniform: a gradient below 1e-6 |ω_i|/h is
             // round-off, not a direction
             const Scalar len = eta.norm();
             if (wi > 0 && len * h > Scalar(1e-6) * wi) a[i] += eps * (eta / len).cross(w[i]);
-        }
+        });
     }
 
 private:

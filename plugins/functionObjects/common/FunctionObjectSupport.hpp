@@ -17,7 +17,7 @@
 #include "Dictionary.hpp"
 #include "FunctionObject.hpp"
 #include "NeighbourSearch.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 
 #include <cmath>
 #include <iomanip>
@@ -82,7 +82,7 @@ private:
 // The fluid particles bucketed on a grid of cell size h over their current bounding box.
 class SampleGrid {
 public:
-    void build(const SphSystem& s) {
+    void build(const Scene& s) {
         const auto& x = s.fluid.position();
         const int dim = s.physics.dimension;
         const Scalar h = s.physics.supportRadius;
@@ -106,7 +106,7 @@ public:
         periodic_ = periodic;
     }
 
-    template <class F> void forEachWithin(const SphSystem& s, const Vec3& p, F&& f) const {
+    template <class F> void forEachWithin(const Scene& s, const Vec3& p, F&& f) const {
         const auto& x = s.fluid.position();
         grid_.forEachWithin(p, x, s.physics.supportRadius, [&](Index j) {
             Vec3 d = p - x[j];
@@ -122,7 +122,7 @@ private:
 
 // Kernel sum Σ_j V_j W(x − x_j) at a point (≈ 1 inside the fluid, ≈ ½ at a free surface);
 // 'accumulate(j, weight)' is called for every neighbour with weight V_j W.
-template <class F> Scalar shepardSum(const SphSystem& s, const SampleGrid& grid, const Vec3& p, F&& accumulate) {
+template <class F> Scalar shepardSum(const Scene& s, const SampleGrid& grid, const Vec3& p, F&& accumulate) {
     const auto& rho = s.fluid.density();
     const Scalar m = s.fluid.particleMass();
     Scalar sum = 0;

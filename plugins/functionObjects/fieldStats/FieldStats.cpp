@@ -26,7 +26,7 @@ public:
     explicit FieldStats(const ModelContext& c)
         : caseDir_(c.caseDirectory), name_(c.name), control_(c.dict), dim_(c.physics.dimension) {}
 
-    void start(const SphSystem& s, double startTime) override {
+    void start(const Scene& s, double startTime) override {
         std::vector<std::string> columns{"nParticles", "rhoErrMin", "rhoErrMax", "rhoErrAvg", "kineticEnergy"};
         for (int a = 0; a < dim_; ++a) columns.push_back(std::string("momentum") + "XYZ"[a]);
         columns.push_back("maxSpeed");
@@ -40,12 +40,12 @@ public:
         sample(s, false);
     }
 
-    void execute(const SphSystem& s, bool writeTime) override {
+    void execute(const Scene& s, bool writeTime) override {
         if (control_.due(s.time, writeTime)) sample(s, true);
     }
 
 private:
-    void sample(const SphSystem& s, bool listsValid) {
+    void sample(const Scene& s, bool listsValid) {
         const auto& x = s.fluid.position();
         const auto& v = s.fluid.velocity();
         const auto& rho = s.fluid.density();
@@ -86,7 +86,7 @@ private:
 
     // Over the step's fluid neighbour list when it matches the particles (after a step),
     // otherwise over a grid built here (start time).
-    double minPairDistance(const SphSystem& s, bool listsValid) {
+    double minPairDistance(const Scene& s, bool listsValid) {
         const auto& x = s.fluid.position();
         const std::size_t n = x.size();
         const auto& list = s.search.fluidNeighbours();

@@ -38,7 +38,7 @@ public:
             for (auto& p : locations_) p[2] = 0;
     }
 
-    void start(const SphSystem& s, double startTime) override {
+    void start(const Scene& s, double startTime) override {
         fields_.clear();
         std::vector<std::string> columns;
         for (const auto& f : fieldNames_) {
@@ -69,7 +69,7 @@ public:
         control_.start(startTime);
     }
 
-    void execute(const SphSystem& s, bool writeTime) override {
+    void execute(const Scene& s, bool writeTime) override {
         if (!control_.due(s.time, writeTime)) return;
         grid_.build(s);
         std::vector<double> row;

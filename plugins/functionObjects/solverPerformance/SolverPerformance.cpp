@@ -26,10 +26,10 @@ class SolverPerformance final : public FunctionObject {
 public:
     explicit SolverPerformance(const ModelContext& c) : caseDir_(c.caseDirectory), name_(c.name) {}
 
-    void start(const SphSystem&, double startTime) override { startTime_ = startTime; }
-    void execute(const SphSystem&, bool) override {}
+    void start(const Scene&, double startTime) override { startTime_ = startTime; }
+    void execute(const Scene&, bool) override {}
 
-    void end(const SphSystem& s) override {
+    void end(const Scene& s) override {
         const auto folder = caseDir_ / "postProcessing" / "solverPerformance" / CaseWriter::timeName(startTime_);
         std::ifstream in(folder / "solverPerformance.dat");
         if (!in) {

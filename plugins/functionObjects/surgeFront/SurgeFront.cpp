@@ -46,7 +46,7 @@ public:
         minNeighbours_ = c.dict.getOrDefault<int>("minNeighbours", 0);
     }
 
-    void start(const SphSystem& s, double startTime) override {
+    void start(const Scene& s, double startTime) override {
         const std::vector<std::string> columns =
             dim_ == 3 ? std::vector<std::string>{"front", "x", "y", "z"} : std::vector<std::string>{"front", "x", "y"};
         file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
@@ -54,12 +54,12 @@ public:
         sample(s, false);
     }
 
-    void execute(const SphSystem& s, bool writeTime) override {
+    void execute(const Scene& s, bool writeTime) override {
         if (control_.due(s.time, writeTime)) sample(s, true);
     }
 
 private:
-    void sample(const SphSystem& s, bool listsValid) {
+    void sample(const Scene& s, bool listsValid) {
         const auto& x = s.fluid.position();
         const auto& list = s.search.fluidNeighbours();
         // neighbour counts are those of the step's last search (same particle order)

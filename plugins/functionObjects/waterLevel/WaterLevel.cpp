@@ -42,7 +42,7 @@ public:
         up_ = -c.physics.gravity / g;
     }
 
-    void start(const SphSystem& s, double startTime) override {
+    void start(const Scene& s, double startTime) override {
         std::vector<std::string> columns;
         for (const auto& p : gauges_) columns.push_back(columnLabel("level", p, dim_));
         file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
@@ -50,18 +50,18 @@ public:
         sample(s);
     }
 
-    void execute(const SphSystem& s, bool writeTime) override {
+    void execute(const Scene& s, bool writeTime) override {
         if (control_.due(s.time, writeTime)) sample(s);
     }
 
 private:
-    Scalar phi(const SphSystem& s, const Vec3& p) const {
+    Scalar phi(const Scene& s, const Vec3& p) const {
         Scalar sum = 0;
         grid_.forEachWithin(s, p, [&](Index, Scalar r) { sum += s.kernel.W(r); });
         return sum * s.fluid.particleMass() / rho0_;
     }
 
-    void sample(const SphSystem& s) {
+    void sample(const Scene& s) {
         grid_.build(s);
         const auto& x = s.fluid.position();
         std::vector<double> row;

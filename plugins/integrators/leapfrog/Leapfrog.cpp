@@ -8,33 +8,23 @@
 namespace {
 using namespace spindrift;
 
-class Leapfrog final : public Integrator {
+class Leapfrog final : public CarriedAccelerationIntegrator {
 public:
     explicit Leapfrog(const ModelContext&) {}
 
-    // After step 0 the accelerations at the current state were computed at the end of the
-    // previous step (with the half-step velocities) and restored from the time directory.
-    void restarted(SphSystem& s) override { haveAcceleration_ = s.step > 0; }
-
-    void step(SphSystem& s, Scalar dt, const Evaluate& evaluate) override {
-        if (!haveAcceleration_) evaluate();
+    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
+        startStep(s, evaluate);
         auto& x = s.fluid.position();
         auto& v = s.fluid.velocity();
-        auto& a = s.fluid.acceleration();
+        const auto& a = s.fluid.acceleration();
         const Scalar half = Scalar(0.5) * dt;
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < x.size(); ++i) {
+        forEachFluidParticle(s, [&](std::size_t i) {
             v[i] += half * a[i];
             x[i] += dt * v[i];
-        }
-        evaluate();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < x.size(); ++i) v[i] += half * a[i];
-        haveAcceleration_ = true;
+        });
+        evaluateAtEnd(s, dt, evaluate);
+        forEachFluidParticle(s, [&](std::size_t i) { v[i] += half * a[i]; });
     }
-
-private:
-    bool haveAcceleration_ = false;
 };
 } // namespace
 

@@ -28,7 +28,7 @@
 namespace {
 using namespace spindrift;
 
-class PereaCordero final : public Integrator {
+class PereaCordero final : public CarriedAccelerationIntegrator {
 public:
     explicit PereaCordero(const ModelContext& c)
         : beta1_(c.dict.getOrDefault<double>("beta1", 0.7586)), beta2_(c.dict.getOrDefault<double>("beta2", 1.101)) {
@@ -47,19 +47,15 @@ public:
         }
     }
 
-    void initialise(SphSystem& s) override {
+    void initialise(Scene& s) override {
         // allocated only when this integrator is chosen; needed for an exact restart
         s.fluid.addVector("accelerationOld1", {false, true});
         s.fluid.addVector("accelerationOld2", {false, true});
         s.fluid.addScalar("historyLength", {false, true});
     }
 
-    // After step 0 the accelerations at the current state were computed at the end of the
-    // previous step and restored from the time directory with the other restart fields.
-    void restarted(SphSystem& s) override { haveAcceleration_ = s.step > 0; }
-
-    void step(SphSystem& s, Scalar dt, const Evaluate& evaluate) override {
-        if (!haveAcceleration_) evaluate();
+    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
+        startStep(s, evaluate);
         auto& x = s.fluid.position();
         auto& v = s.fluid.velocity();
         const auto& a = s.fluid.acceleration();
@@ -68,8 +64,7 @@ public:
         auto& level = *s.fluid.findScalar("historyLength");
         const Scalar c0 = c_[0], c1 = c_[1], c2 = c_[2];
         const Scalar kx = beta2_ * dt * dt / 6, kv = beta1_ * dt / 2, half = Scalar(0.5) * dt * dt;
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < x.size(); ++i) {
+        forEachFluidParticle(s, [&](std::size_t i) {
             const bool full = level[i] >= 2;
             const Vec3 am1 = full ? a1[i] : a[i], am2 = full ? a2[i] : a[i];
             const Vec3 d = c0 * a[i] + c1 * am1 + c2 * am2;
@@ -78,15 +73,13 @@ public:
             a2[i] = level[i] >= 1 ? a1[i] : a[i];
             a1[i] = a[i];
             level[i] = std::min<Scalar>(level[i] + 1, 2);
-        }
-        evaluate();
-        haveAcceleration_ = true;
+        });
+        evaluateAtEnd(s, dt, evaluate);
     }
 
 private:
     Scalar beta1_, beta2_;
     Scalar c_[3];
-    bool haveAcceleration_ = false;
 };
 } // namespace
 

@@ -1,5 +1,6 @@
 // symplecticEuler — semi-implicit Euler: v_{n+1} = v_n + Δt a(x_n, v_n), x_{n+1} = x_n + Δt v_{n+1}.
-// First order, symplectic; the integrator PCISPH and PBF are formulated with.
+// First order, symplectic; the integrator PCISPH, PBF and DFSPH are formulated with, so the one
+// that applies their Δx/Δt² and Δv/Δt results exactly (ResultKind).
 #include "Integrator.hpp"
 #include "Plugin.hpp"
 
@@ -10,16 +11,18 @@ class SymplecticEuler final : public Integrator {
 public:
     explicit SymplecticEuler(const ModelContext&) {}
 
-    void step(SphSystem& s, Scalar dt, const Evaluate& evaluate) override {
-        evaluate();
+    // the scheme position-based (Δx/Δt²) and velocity-based (Δv/Δt) results are formulated with
+    bool applies(ResultKind) const override { return true; }
+
+    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
+        evaluate(s.time);
         auto& x = s.fluid.position();
         auto& v = s.fluid.velocity();
         const auto& a = s.fluid.acceleration();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < x.size(); ++i) {
+        forEachFluidParticle(s, [&](std::size_t i) {
             v[i] += dt * a[i];
             x[i] += dt * v[i];
-        }
+        });
     }
 };
 } // namespace

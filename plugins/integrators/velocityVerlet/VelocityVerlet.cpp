@@ -13,36 +13,27 @@
 namespace {
 using namespace spindrift;
 
-class VelocityVerlet final : public Integrator {
+class VelocityVerlet final : public CarriedAccelerationIntegrator {
 public:
     explicit VelocityVerlet(const ModelContext&) {}
 
-    // After step 0 the accelerations at the current state were computed at the end of the
-    // previous step and restored from the time directory with the other restart fields.
-    void restarted(SphSystem& s) override { haveAcceleration_ = s.step > 0; }
-
-    void step(SphSystem& s, Scalar dt, const Evaluate& evaluate) override {
-        if (!haveAcceleration_) evaluate();
+    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
+        startStep(s, evaluate);
         auto& x = s.fluid.position();
         auto& v = s.fluid.velocity();
-        auto& a = s.fluid.acceleration();
-        const std::size_t n = x.size();
-        halfKick_.resize(n); // v_n + ½Δt a_n, scratch within the step
+        const auto& a = s.fluid.acceleration();
+        halfKick_.resize(s.fluid.size()); // v_n + ½Δt a_n, scratch within the step
         const Scalar half = Scalar(0.5) * dt;
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        forEachFluidParticle(s, [&](std::size_t i) {
             x[i] += dt * (v[i] + half * a[i]);
             halfKick_[i] = v[i] + half * a[i];
             v[i] += dt * a[i];
-        }
-        evaluate();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) v[i] = halfKick_[i] + half * a[i];
-        haveAcceleration_ = true;
+        });
+        evaluateAtEnd(s, dt, evaluate);
+        forEachFluidParticle(s, [&](std::size_t i) { v[i] = halfKick_[i] + half * a[i]; });
     }
 
 private:
-    bool haveAcceleration_ = false;
     std::vector<Vec3> halfKick_;
 };
 } // namespace

@@ -16,7 +16,7 @@
 #pragma once
 
 #include "Dictionary.hpp"
-#include "SphSystem.hpp"
+#include "Scene.hpp"
 
 #include <sstream>
 #include <string>

@@ -26,12 +26,13 @@
 // constraint error by 1 − (1 + ω) μ/(1 + ε/D0), and μ, the mode's eigenvalue of J Jᵀ over D0,
 // reaches 2.1 (2D) and 2.8 (3D) for the cubic spline at h = 2 Δx, 2.9 and 4.9 at h = 2.6 Δx,
 // so with ε = 0 the shortest modes grow (|·| > 1); the density clamp damps what remains.
-// Wall particles (static) take part in the density and in the correction with volume V_b:
-// Ψ_b/ρ0 of the boundary model ("adaptive", Akinci's 1/Σ W_bk) or the fluid volume V
-// ("uniform"). The multiplier is kept between steps in the field pbfLambda as λ/Δt² (= −p/ρ0,
-// independent of Δt); the pressure field shows p = −ρ0 λ/Δt². When the sampled fluid starts
-// compressed against the walls (adaptive volumes on multi-layer walls), initialise() first
-// projects the initial positions onto the constraint, without velocities (logged).
+// Wall particles take part in the density and in the correction with the volume V_b = M_b/ρ0
+// of the masses the boundary model gives them. The multiplier is kept between steps in the
+// field pbfLambda as λ/Δt² (= −p/ρ0, independent of Δt); the pressure field shows
+// p = −ρ0 λ/Δt². When the sampled fluid starts compressed against the walls, initialise()
+// first projects the initial positions onto the constraint, without velocities (logged).
+// PositionBasedPressureModel is the plugin around the solver; pbf and relaxedPbf differ only in
+// which options they expose and in their defaults.
 #pragma once
 
 #include "Dictionary.hpp"
@@ -39,8 +40,8 @@
 #include "LatticePrototype.hpp"
 #include "Log.hpp"
 #include "ModelContext.hpp"
-#include "SphOperators.hpp"
-#include "WallVolumes.hpp"
+#include "PairLoop.hpp"
+#include "PressureModel.hpp"
 
 #include <cmath>
 #include <limits>
@@ -53,7 +54,6 @@ struct PositionBasedOptions {
     Scalar omega = 0;                  // over-relaxation of the position update
     Scalar warmStart = 0;              // λ starts at warmStart × the previous step's λ
     bool clampDensity = false;         // C_i = max(ρ_i/ρ0 − 1, 0): only compression is corrected
-    bool adaptiveBoundaryVolume = false;
     Scalar epsilon = Scalar(1);        // relaxation ε, in units of D0
     Scalar sCorrK = Scalar(0.1);       // artificial pressure (tensile instability), 0 = off
     int sCorrN = 4;
@@ -73,7 +73,6 @@ struct PositionBasedOptions {
                 throw InputError(d.locationOf("warmStart"), "warmStart must be in [0, 1]", "warmStart");
         }
         clampDensity = d.getOrDefault<bool>("clampDensity", clampDensity);
-        adaptiveBoundaryVolume = readAdaptiveBoundaryVolume(d, adaptiveBoundaryVolume);
         epsilon = d.getOrDefault<double>("epsilon", epsilon);
         if (!(epsilon > 0)) throw InputError(d.locationOf("epsilon"), "epsilon must be positive", "epsilon");
         sCorrK = d.getOrDefault<double>("sCorrK", sCorrK);
@@ -96,7 +95,7 @@ public:
         controls_.read(c.solution);
     }
 
-    void initialise(SphSystem& s) {
+    void initialise(Scene& s) {
         const Scalar m = s.fluid.particleMass();
         volume_ = m / rho0_;
         const LatticeGradientSums proto = latticeGradientSums(s.kernel, s.physics.particleSpacing, s.physics.dimension);
@@ -106,22 +105,18 @@ public:
         wDeltaQ_ = s.kernel.W(options_.sCorrDeltaQ * s.kernel.supportRadius());
         lambda_ = &s.fluid.addScalar("pbfLambda", {false, true});
         lambdaStart_ = &s.fluid.addScalar("pbfLambdaStart", {false, false});
-        // wall volumes (static walls; the boundary model has initialised before us)
-        wallVolume_ = wallVolumes(s, options_.adaptiveBoundaryVolume, name_);
-        s.soundSpeed = 0;
         relaxInitialPositions(s);
         std::ostringstream msg;
         msg << name_ << ": omega " << options_.omega << ", warm start " << options_.warmStart << ", density "
-            << (options_.clampDensity ? "clamped to rho0 from below" : "not clamped") << ", wall volume "
-            << (options_.adaptiveBoundaryVolume ? "adaptive (Psi_b/rho0)" : "uniform (m/rho0)")
+ << (options_.clampDensity ? "clamped to rho0 from below" : "not clamped")
             << ", epsilon " << epsilon_ << " (= " << options_.epsilon << " D0), s_corr k " << options_.sCorrK;
         log::info(msg.str());
     }
 
     // ρ_i = m (W0 + Σ_j W_ij) + ρ0 Σ_b V_b W_ib at the current positions.
-    void computeDensity(SphSystem& s) const { densityWithWalls(s, s.fluid.position(), wallVolume_, s.fluid.density()); }
+    void computeDensity(Scene& s) const { summationDensity(s, s.fluid.position(), s.fluid.density()); }
 
-    void solve(SphSystem& s, Scalar dt) {
+    void solve(Scene& s, Scalar dt) {
         const std::size_t n = s.fluid.size();
         const auto& x = s.fluid.position();
         const auto& v = s.fluid.velocity();
@@ -183,9 +178,9 @@ private:
     // fluid can start compressed beside them. The solver would remove that in its first step
     // and turn the displacement into a velocity Δx/Δt; instead the initial positions are
     // projected onto the density constraint here, without touching the velocities.
-    void relaxInitialPositions(SphSystem& s) {
+    void relaxInitialPositions(Scene& s) {
         const std::size_t n = s.fluid.size();
-        if (n == 0 || !s.hasBoundary()) return;
+        if (n == 0 || !s.hasWalls()) return;
         auto& x = s.fluid.position();
         s.search.build(x);
         predicted_ = x;
@@ -218,71 +213,74 @@ private:
         else log::info(msg.str());
     }
 
+    // Σ_j W_ij, Σ_j ∇W_ij, Σ_j |∇W_ij|² over the fluid; Σ_b M_b W_ib, Σ_b V_b ∇W_ib over the walls.
+    struct ConstraintTerm {
+        struct Sum {
+            Scalar w = 0, squares = 0, wall = 0;
+            Vec3 grad = Vec3::Zero(), wallGrad = Vec3::Zero();
+        };
+        static constexpr bool usesGradient = true;
+        struct Particle {};
+        const KernelTable& kt;
+        Scalar invRho0;
+        Particle particle(std::size_t) const { return {}; }
+        void fluid(const Particle&, const Pair& q, Sum& sum) const {
+            sum.w += kt.WSq(q.r2);
+            sum.grad += q.gradW;
+            sum.squares += q.gradW.squaredNorm();
+        }
+        void wall(const Particle&, const WallPair& q, Sum& sum) const {
+            sum.wall += q.mass() * kt.WSq(q.r2);
+            sum.wallGrad += (q.mass() * invRho0) * q.gradW;
+        }
+    };
+
     // ρ*, C and Δλ at the predicted positions.
-    void constraintStep(const SphSystem& s) {
-        const auto& kt = s.kernel;
-        const Scalar m = s.fluid.particleMass(), rho0 = rho0_, V = volume_, eps = epsilon_;
-        const auto& ff = s.search.fluidNeighbours();
-        const auto& fb = s.search.boundaryNeighbours();
-        const auto& xb = s.boundary.position();
-        const auto& xs = predicted_;
-        const Scalar* vb = wallVolume_.data();
-        const bool walls = s.hasBoundary(), clamp = options_.clampDensity;
-        forEachParticleBalanced(s.search, [&](std::size_t i) {
-            Scalar sum = kt.W0(), sq = 0;
-            Vec3 grad = Vec3::Zero();
-            forEachNeighbour(ff, xs, xs, i, [&](Index, const Vec3& rij, Scalar r2) {
-                sum += kt.WSq(r2);
-                const Vec3 g = kt.gradWSq(rij, r2);
-                grad += g;
-                sq += g.squaredNorm();
-            });
-            Scalar rho = m * sum;
-            grad *= V;
-            if (walls)
-                forEachNeighbour(fb, xs, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    rho += rho0 * vb[b] * kt.WSq(r2);
-                    grad += vb[b] * kt.gradWSq(rib, r2);
-                });
+    void constraintStep(const Scene& s) {
+        const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0(), rho0 = rho0_, V = volume_, eps = epsilon_;
+        const bool clamp = options_.clampDensity;
+        forEachPairSum(s, predicted_, ConstraintTerm{s.kernel, 1 / rho0}, [&](std::size_t i, const auto&, const auto& sum) {
+            const Scalar rho = m * (w0 + sum.w) + sum.wall;
+            const Vec3 grad = V * sum.grad + sum.wallGrad;
             rhoPredicted_[i] = rho;
             Scalar C = rho / rho0 - 1;
             if (clamp) C = std::max(C, Scalar(0));
-            dLambda_[i] = -C / (grad.squaredNorm() + V * V * sq + eps);
+            dLambda_[i] = -C / (grad.squaredNorm() + V * V * sum.squares + eps);
         });
     }
 
+    // Σ_j (l_i + l_j + s_corr,ij) ∇W_ij over the fluid, Σ_b V_b l_i ∇W_ib over the walls.
+    struct CorrectionTerm {
+        struct Sum {
+            Vec3 fluid = Vec3::Zero(), wall = Vec3::Zero();
+        };
+        static constexpr bool usesGradient = true;
+        using Particle = Scalar; // l_i
+        const KernelTable& kt;
+        const Scalar* l;
+        Scalar invRho0, k, invWq; // s_corr = −k (W/W(Δq))ⁿ (k = 0: none)
+        int power;
+        Particle particle(std::size_t i) const { return l[i]; }
+        void fluid(Scalar li, const Pair& q, Sum& sum) const {
+            Scalar coeff = li + l[q.j];
+            if (k != 0) {
+                const Scalar ratio = kt.WSq(q.r2) * invWq;
+                Scalar rn = ratio;
+                for (int e = 1; e < power; ++e) rn *= ratio;
+                coeff -= k * rn;
+            }
+            sum.fluid += coeff * q.gradW;
+        }
+        void wall(Scalar li, const WallPair& q, Sum& sum) const { sum.wall += (q.mass() * invRho0 * li) * q.gradW; }
+    };
+
     // step_ = V Σ_j (l_i + l_j + s_corr) ∇W_ij + Σ_b V_b l_i ∇W_ib at the predicted positions.
-    void positionCorrection(const SphSystem& s, const std::vector<Scalar>& l, bool sCorr) {
-        const auto& kt = s.kernel;
+    void positionCorrection(const Scene& s, const std::vector<Scalar>& l, bool sCorr) {
         const Scalar V = volume_;
-        const auto& ff = s.search.fluidNeighbours();
-        const auto& fb = s.search.boundaryNeighbours();
-        const auto& xb = s.boundary.position();
-        const auto& xs = predicted_;
-        const Scalar* vb = wallVolume_.data();
-        const bool walls = s.hasBoundary();
-        const Scalar k = options_.sCorrK / d0_, invWq = wDeltaQ_ > 0 ? 1 / wDeltaQ_ : 0;
-        const int nPow = options_.sCorrN;
-        forEachParticleBalanced(s.search, [&](std::size_t i) {
-            const Scalar li = l[i];
-            Vec3 d = Vec3::Zero();
-            forEachNeighbour(ff, xs, xs, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                Scalar coeff = li + l[j];
-                if (sCorr) {
-                    const Scalar q = kt.WSq(r2) * invWq;
-                    Scalar qn = q;
-                    for (int e = 1; e < nPow; ++e) qn *= q;
-                    coeff -= k * qn;
-                }
-                d += coeff * kt.gradWSq(rij, r2);
-            });
-            d *= V;
-            if (walls)
-                forEachNeighbour(fb, xs, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    d += (vb[b] * li) * kt.gradWSq(rib, r2);
-                });
-            step_[i] = d;
-        });
+        const CorrectionTerm term{s.kernel, l.data(), 1 / rho0_, sCorr ? options_.sCorrK / d0_ : Scalar(0),
+                                  wDeltaQ_ > 0 ? 1 / wDeltaQ_ : 0, options_.sCorrN};
+        forEachPairSum(s, predicted_, term,
+                       [&](std::size_t i, const auto&, const auto& sum) { step_[i] = V * sum.fluid + sum.wall; });
     }
 
     // x* += factor · step, and (accumulateLambda) λ += factor · Δλ, in one pass.
@@ -304,11 +302,27 @@ private:
     Scalar volume_ = 0, d0_ = 0, epsilon_ = 0, wDeltaQ_ = 0;
     std::vector<Scalar>* lambda_ = nullptr;      // field pbfLambda: λ/Δt² of the last step
     std::vector<Scalar>* lambdaStart_ = nullptr; // field pbfLambdaStart: warm-start source
-    std::vector<Scalar> wallVolume_;
     double lastSolveTime_ = std::numeric_limits<double>::quiet_NaN();
     std::vector<Vec3> predicted_, correction_, step_;
     std::vector<Scalar> lambdaTotal_, dLambda_, rhoPredicted_; // λ of this solve, its increment, ρ*
     SolverStats stats_;
+};
+
+// The plugin around the solver (pbf, relaxedPbf): each passes its option defaults; both stop
+// at an average density error of 0.1 % (seed 002), with no minimum and at most 100 iterations.
+class PositionBasedPressureModel : public PressureModel {
+public:
+    PositionBasedPressureModel(const ModelContext& c, PositionBasedOptions defaults, std::string name)
+        : solver_(c, defaults, {Scalar(0.001), IterativeSolverControls::Norm::Average, 0, 100}, std::move(name)) {}
+    void initialise(Scene& s) override { solver_.initialise(s); }
+    void computeDensity(Scene& s) override { solver_.computeDensity(s); }
+    void addPressureAcceleration(Scene& s, Scalar dt) override { solver_.solve(s, dt); }
+    ResultKind result() const override { return ResultKind::positionChange; }
+    bool isIterative() const override { return true; }
+    SolverStats lastSolve() const override { return solver_.stats(); }
+
+private:
+    PositionBasedDensitySolver solver_;
 };
 
 } // namespace spindrift

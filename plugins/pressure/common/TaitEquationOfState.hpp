@@ -4,11 +4,13 @@
 // Dictionary keywords (read by read()): gamma (7), soundSpeed c0 [m/s] (default
 // 10·sqrt(2|g|H) from the initial fluid height H along gravity, i.e. ~1 % density variation
 // for a free fall from H), clampNegativePressure (yes: p = max(p, 0), for free surfaces).
+// The sound speed is resolved once at set-up (resolveSoundSpeed, through the pressure model's
+// soundSpeed()) and read back from Scene::constants in initialise().
 #pragma once
 
 #include "Dictionary.hpp"
 #include "Log.hpp"
-#include "SphSystem.hpp"
+#include "PairLoop.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -35,28 +37,33 @@ struct TaitEquationOfState {
         B = soundSpeed * soundSpeed * rho0 / gamma;
     }
 
-    // Resolves the default sound speed from the initial fluid and publishes it to the system.
-    void initialise(SphSystem& s) {
-        if (soundSpeed <= 0) {
-            const Vec3 g = s.physics.gravity;
-            const Scalar gNorm = g.norm();
-            Scalar height = 0;
-            if (gNorm > 0 && s.fluid.size() > 0) {
-                const Vec3 up = -g / gNorm;
-                Scalar lo = std::numeric_limits<Scalar>::max(), hi = -lo;
-                for (const auto& x : s.fluid.position()) {
-                    lo = std::min(lo, x.dot(up));
-                    hi = std::max(hi, x.dot(up));
-                }
-                height = hi - lo + s.physics.particleSpacing;
-            }
-            soundSpeed = height > 0 ? 10 * std::sqrt(2 * gNorm * height) : Scalar(10);
-            std::ostringstream m;
-            m << "    default: soundSpeed " << soundSpeed << " m/s (10 sqrt(2 g H), H = " << height << " m)";
-            log::info(m.str());
-        }
+    // The sound speed: the dictionary's, else 10 sqrt(2 |g| H) from the initial fluid height H
+    // (SceneConstants::fluidHeight), else 10 m/s without gravity. Called once at set-up.
+    Scalar resolveSoundSpeed(const SceneConstants& c, const PhysicalParameters& physics) const {
+        if (soundSpeed > 0) return soundSpeed;
+        const Scalar gNorm = physics.gravity.norm(), height = c.fluidHeight;
+        const Scalar c0 = height > 0 && gNorm > 0 ? 10 * std::sqrt(2 * gNorm * height) : Scalar(10);
+        std::ostringstream m;
+        m << "    default: soundSpeed " << c0 << " m/s (10 sqrt(2 g H), H = " << height << " m)";
+        log::info(m.str());
+        return c0;
+    }
+
+    // Takes the sound speed the core resolved (Scene::constants), or resolves it the same way
+    // where no core did (a model made by hand, as in the unit tests).
+    void initialise(const Scene& s) {
+        soundSpeed = s.constants.soundSpeed > 0 ? s.constants.soundSpeed : resolveSoundSpeed(s.constants, s.physics);
         B = soundSpeed * soundSpeed * rho0 / gamma;
-        s.soundSpeed = soundSpeed;
+    }
+
+    // The weakly compressible density and pressure: summation density (walls included), then
+    // p_i = p(ρ_i) for every fluid particle.
+    void densityAndPressure(Scene& s) const {
+        auto& rho = s.fluid.density();
+        auto& p = s.fluid.pressure();
+        summationDensity(s, s.fluid.position(), rho);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < rho.size(); ++i) p[i] = pressure(rho[i]);
     }
 
     Scalar pressure(Scalar rho) const {

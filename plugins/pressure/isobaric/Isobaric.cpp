@@ -34,7 +34,7 @@
 #include "IsobaricBlend.hpp"
 #include "Plugin.hpp"
 #include "PressureModel.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "TaitEquationOfState.hpp"
 
 #include <sstream>
@@ -42,77 +42,94 @@
 namespace {
 using namespace spindrift;
 
+// Σ_b M_b ∇_i W_ib: the direction of i's wall deficiency (zero away from walls).
+struct TowardsWallTerm {
+    using Sum = Vec3;
+    static constexpr bool usesGradient = true, visitsFluid = false;
+    struct Particle {};
+    Particle particle(std::size_t) const { return {}; }
+    void fluid(const Particle&, const Pair&, Sum&) const {}
+    void wall(const Particle&, const WallPair& p, Sum& sum) const { sum += p.mass() * p.gradW; }
+};
+
+// The blended pressure force of i's fluid pairs, with the weights of the wall blend ᾱ_i, and the
+// wall sums that ᾱ_i combines (it is known only once every fluid pair is summed):
+//   wall part = ᾱ_i Σ_b M_b (p_b − p_i)/(2ρ_i²) ∇W_ib + (2 − ᾱ_i)/2 Σ_b M_b (P_i + P_b) ∇W_ib.
+struct IsobaricTerm {
+    struct Sum {
+        Vec3 fluid = Vec3::Zero();        // Σ_j m coeff_ij ∇W_ij
+        Scalar alphaWeighted = 0, weight = 0; // Σ α_ij |∇W_ij·n_i|, Σ |∇W_ij·n_i|
+        Vec3 wallDifference = Vec3::Zero(); // Σ_b M_b (p_b − p_i)/(2ρ_i²) ∇W_ib
+        Vec3 wallSum = Vec3::Zero();        // Σ_b M_b (P_i + P_b) ∇W_ib
+    };
+    static constexpr bool usesGradient = true;
+    struct Particle {
+        Scalar p, rho, P, halfInvRho2;
+        Vec3 towardsWall;
+    };
+    const Scalar* p;
+    const Scalar* rho;
+    const Vec3* towardsWall;
+    Scalar m;
+    Vec3 g;
+    bool clamp;
+    isobaric::Blend blend;
+
+    Particle particle(std::size_t i) const {
+        const Scalar r2 = rho[i] * rho[i];
+        return {p[i], rho[i], p[i] / r2, Scalar(0.5) / r2, towardsWall[i]};
+    }
+    void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
+        if (!(q.r2 > 0)) return;
+        const Scalar alpha = Scalar(blend.alpha(pi.p, p[q.j]));
+        const Scalar coeff = alpha * (p[q.j] - pi.p) * pi.halfInvRho2 +
+                             Scalar(0.5) * (2 - alpha) * (pi.P + p[q.j] / (rho[q.j] * rho[q.j]));
+        sum.fluid += (m * coeff) * q.gradW;
+        const Scalar w = std::abs(q.gradW.dot(pi.towardsWall));
+        sum.alphaWeighted += alpha * w;
+        sum.weight += w;
+    }
+    void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
+        Scalar pWall, Pb;
+        if (q.wall.mirrored) {
+            pWall = pi.p - pi.rho * g.dot(q.r); // p_i + ρ_i g·(x_b − x_i)
+            if (clamp && pWall < 0) pWall = 0;
+            Pb = pi.P;
+        } else {
+            pWall = q.wall.p[q.j];
+            Pb = pWall / (q.wall.rho[q.j] * q.wall.rho[q.j]);
+        }
+        sum.wallDifference += (q.mass() * (pWall - pi.p) * pi.halfInvRho2) * q.gradW;
+        sum.wallSum += (q.mass() * (pi.P + Pb)) * q.gradW;
+    }
+};
+
 class Isobaric final : public PressureModel {
 public:
     explicit Isobaric(const ModelContext& c) : blend_(readDelta(c.dict)) { eos_.read(c.dict, c.physics.rho0); }
 
-    void initialise(SphSystem& s) override { eos_.initialise(s); }
-
-    void computeDensity(SphSystem& s) override {
-        auto& rho = s.fluid.density();
-        auto& p = s.fluid.pressure();
-        summationDensity(s, s.fluid.position(), rho);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < rho.size(); ++i) p[i] = eos_.pressure(rho[i]);
+    Scalar soundSpeed(const SceneConstants& c, const PhysicalParameters& physics) const override {
+        return eos_.resolveSoundSpeed(c, physics);
+    }
+    void initialise(Scene& s) override {
+        eos_.initialise(s);
+        towardsWall_ = &s.fluid.addVector("isobaricTowardsWall", {false, false, true});
     }
 
-    void addPressureAcceleration(SphSystem& s, Scalar) override {
-        const auto& kt = s.kernel;
-        const Scalar m = s.fluid.particleMass();
+    void computeDensity(Scene& s) override { eos_.densityAndPressure(s); }
+
+    void addPressureAcceleration(Scene& s, Scalar) override {
         const auto& x = s.fluid.position();
-        const auto& p = s.fluid.pressure();
-        const auto& rho = s.fluid.density();
+        auto& n = *towardsWall_;
+        forEachPairSum(s, x, TowardsWallTerm{}, [&](std::size_t i, const auto&, const Vec3& sum) { n[i] = sum; });
         auto& a = s.fluid.acceleration();
-        const auto& xb = s.boundary.position();
-        const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
-        const bool mirrored = s.boundaryPressureMirrored, clamp = eos_.clampNegative;
-        const auto& pb = s.boundary.pressure();
-        const auto& rhob = s.boundary.density();
-        const Vec3 g = s.physics.gravity;
-        const isobaric::Blend blend = blend_;
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            const Scalar pi = p[i], Pi = pi / (rho[i] * rho[i]), halfInvRho2 = Scalar(0.5) / (rho[i] * rho[i]);
-            Vec3 acc = Vec3::Zero();
-            // direction of the wall deficiency, Σ_b Ψ_b ∇_i W_ib (zero away from walls)
-            Vec3 towardsWall = Vec3::Zero();
-            if (psi)
-                forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    towardsWall += psi[b] * kt.gradWSq(rib, r2);
-                });
-            Scalar alphaWeighted = 0, weight = 0; // Σ α_ij |∇W_ij·n|, Σ |∇W_ij·n|
-            forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                if (!(r2 > 0)) return;
-                const Scalar alpha = Scalar(blend.alpha(pi, p[j]));
-                const Scalar coeff = alpha * (p[j] - pi) * halfInvRho2 +
-                                     Scalar(0.5) * (2 - alpha) * (Pi + p[j] / (rho[j] * rho[j]));
-                const Vec3 grad = kt.gradWSq(rij, r2);
-                acc -= (m * coeff) * grad;
-                const Scalar w = std::abs(grad.dot(towardsWall));
-                alphaWeighted += alpha * w;
-                weight += w;
-            });
-            if (psi) {
-                const Scalar alpha = weight > 0 ? alphaWeighted / weight : Scalar(0), beta = 2 - alpha;
-                forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                    Scalar pWall, Pb;
-                    if (mirrored) {
-                        pWall = pi - rho[i] * g.dot(rib); // p_i + ρ_i g·(x_b − x_i)
-                        if (clamp && pWall < 0) pWall = 0;
-                        Pb = Pi;
-                    } else {
-                        pWall = pb[b];
-                        Pb = pb[b] / (rhob[b] * rhob[b]);
-                    }
-                    const Scalar coeff = alpha * (pWall - pi) * halfInvRho2 + Scalar(0.5) * beta * (Pi + Pb);
-                    acc -= (psi[b] * coeff) * kt.gradWSq(rib, r2);
-                });
-            }
-            a[i] += acc;
-        }
+        const IsobaricTerm term{s.fluid.pressure().data(), s.fluid.density().data(), n.data(), s.fluid.particleMass(),
+                                s.physics.gravity, eos_.clampNegative, blend_};
+        forEachPairSum(s, x, term, [&](std::size_t i, const auto&, const IsobaricTerm::Sum& sum) {
+            const Scalar alpha = sum.weight > 0 ? sum.alphaWeighted / sum.weight : Scalar(0);
+            a[i] -= sum.fluid + alpha * sum.wallDifference + Scalar(0.5) * (2 - alpha) * sum.wallSum;
+        });
     }
-
-    Scalar soundSpeed() const override { return eos_.soundSpeed; }
 
 private:
     static double readDelta(const Dictionary& d) {
@@ -128,6 +145,7 @@ private:
 
     isobaric::Blend blend_;
     TaitEquationOfState eos_;
+    std::vector<Vec3>* towardsWall_ = nullptr; // scratch: Σ_b M_b ∇W_ib
 };
 } // namespace
 

@@ -1,20 +1,19 @@
-// pbf — position based fluids (Macklin & Müller 2013; MODELS.md "pbf and relaxedPbf"): the
+// pbf — position based fluids (Macklin & Müller 2013; docs/MODELS.md §pbf): the
 // density constraint C_i = ρ_i/ρ0 − 1 solved by Jacobi iterations on the predicted positions,
 // λ_i = −C_i/(Σ_k |∇_k C_i|² + ε), Δx_i = (1/ρ0) Σ_j (λ_i + λ_j + s_corr) m ∇W_ij with the
 // artificial pressure s_corr = −k (W(r)/W(Δq))ⁿ against clustering. The position change is
 // returned as the acceleration Δx/Δt², so symplectic Euler reproduces PBF exactly. Wall
-// particles count with the fluid particle's volume (boundaryVolume uniform). The iterations
+// particles count with the volumes the boundary model gives them. The iterations
 // stop when the density error (average by default, as in seed 002's PBF baseline) is at most η,
 // or at maxIterations (set maxDensityError 0 for Macklin & Müller's fixed count). The solver
 // itself is PositionBasedDensitySolver.hpp, shared with relaxedPbf.
 //
 //   pressure { type pbf; epsilon 0.1; sCorrK 0.1; sCorrN 4; sCorrDeltaQ 0.2;
-//              clampDensity no; boundaryVolume uniform; }
+//              clampDensity no; }
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average;
 //                           minIterations 0; maxIterations 100; }
 #include "Plugin.hpp"
 #include "PositionBasedDensitySolver.hpp"
-#include "PressureModel.hpp"
 
 namespace {
 using namespace spindrift;
@@ -23,32 +22,13 @@ PositionBasedOptions pbfDefaults() {
     PositionBasedOptions o;
     o.relaxed = false;
     o.clampDensity = false;
-    o.adaptiveBoundaryVolume = false;
     o.sCorrK = Scalar(0.1);
     return o;
 }
 
-IterativeSolverControls pbfControls() {
-    IterativeSolverControls c;
-    c.maxDensityError = Scalar(0.001);
-    c.norm = IterativeSolverControls::Norm::Average;
-    c.minIterations = 0;
-    c.maxIterations = 100;
-    return c;
-}
-
-class Pbf final : public PressureModel {
+class Pbf final : public PositionBasedPressureModel {
 public:
-    explicit Pbf(const ModelContext& c) : solver_(c, pbfDefaults(), pbfControls(), "pbf") {}
-    void initialise(SphSystem& s) override { solver_.initialise(s); }
-    void computeDensity(SphSystem& s) override { solver_.computeDensity(s); }
-    void addPressureAcceleration(SphSystem& s, Scalar dt) override { solver_.solve(s, dt); }
-    Scalar soundSpeed() const override { return 0; }
-    bool isIterative() const override { return true; }
-    SolverStats lastSolve() const override { return solver_.stats(); }
-
-private:
-    PositionBasedDensitySolver solver_;
+    explicit Pbf(const ModelContext& c) : PositionBasedPressureModel(c, pbfDefaults(), "pbf") {}
 };
 } // namespace
 

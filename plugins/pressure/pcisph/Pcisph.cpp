@@ -4,7 +4,7 @@
 // Inside one call, on the step's neighbour lists, with the step's Δt:
 //   p = 0, a_p = 0; repeat:
 //     v* = v + Δt (a_nonp + a_p),  x* = x + Δt v*                       (prediction)
-//     ρ*_i = m Σ_j W(x*_i − x*_j) + ρ0 Σ_b V_b W(x*_i − x_b)            (eq. 1, walls included)
+//     ρ*_i = m Σ_j W(x*_i − x*_j) + Σ_b M_b W(x*_i − x_b)               (eq. 1, walls included)
 //     stop if iterations ≥ minIterations and the density error ≤ η, or at maxIterations
 //     p_i += δ (ρ*_i − ρ0)                                                (eqs. 8–9)
 //     a_p,i = −Σ_j m (p_i/ρ̂_i² + p_j/ρ̂_j²) ∇_i W_ij − Σ_b ρ0 V_b 2 p_i/ρ̂_i² ∇_i W_ib   (eq. 3)
@@ -32,20 +32,18 @@
 // η: with symplectic Euler the next step starts from the verified prediction (leapfrog: the
 // same for a constant Δt), up to neighbours that enter the support during the step (the
 // paper's §2.4.1 approximation). Negative pressures are clamped to zero (free surfaces) unless
-// clampNegativePressure no. Wall particles b (pressure mirrored, as the boundary model says)
-// have the volume V_b of WallVolumes.hpp: uniform m/ρ0 by default (exact beside the tutorials'
-// multi-layer lattice walls), or adaptive Ψ_b/ρ0 of the boundary model.
+// clampNegativePressure no. Wall particles b take part with the masses M_b and the pressure
+// (mirrored or their own) the boundary model gives them, at their positions of the step.
 //
-//   pressure { type pcisph; clampNegativePressure yes; boundaryVolume uniform; }
+//   pressure { type pcisph; clampNegativePressure yes; }
 //   sphSolution: pressure { maxDensityError 0.01; densityErrorNorm maximum;
 //                           minIterations 3; maxIterations 100; }
 #include "IterativeSolverControls.hpp"
 #include "LatticePrototype.hpp"
 #include "Log.hpp"
 #include "Plugin.hpp"
+#include "PairLoop.hpp"
 #include "PressureModel.hpp"
-#include "SphOperators.hpp"
-#include "WallVolumes.hpp"
 
 #include <sstream>
 
@@ -55,19 +53,16 @@ using namespace spindrift;
 class Pcisph final : public PressureModel {
 public:
     explicit Pcisph(const ModelContext& c)
-        : rho0_(c.physics.rho0), clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)),
-          adaptiveWalls_(readAdaptiveBoundaryVolume(c.dict, false)) {
+        : rho0_(c.physics.rho0), clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)) {
         controls_.read(c.solution); // defaults: η 1 % of the maximum, 3 to 100 iterations
     }
 
-    void initialise(SphSystem& s) override {
+    void initialise(Scene& s) override {
         prototype_ = latticeGradientSums(s.kernel, s.physics.particleSpacing, s.physics.dimension);
         if (!(prototype_.sumGradSquared > 0))
             throw std::runtime_error("pcisph: the prototype particle has no neighbours (supportRadius too small)");
         const double gain = latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension);
         deltaScale_ = gain > maxCorrectionGain ? maxCorrectionGain / gain : 1.0;
-        wallVolume_ = wallVolumes(s, adaptiveWalls_, "pcisph");
-        s.soundSpeed = 0;
         std::ostringstream m;
         m << "pcisph: prototype particle with " << prototype_.neighbours << " lattice neighbours, "
           << "sum grad W . grad W = " << prototype_.sumGradSquared << ", |sum grad W|^2 = " << prototype_.gradSumSquared
@@ -76,11 +71,9 @@ public:
         log::info(m.str());
     }
 
-    void computeDensity(SphSystem& s) override {
-        densityWithWalls(s, s.fluid.position(), wallVolume_, s.fluid.density());
-    }
+    void computeDensity(Scene& s) override { summationDensity(s, s.fluid.position(), s.fluid.density()); }
 
-    void addPressureAcceleration(SphSystem& s, Scalar dt) override {
+    void addPressureAcceleration(Scene& s, Scalar dt) override {
         const std::size_t n = s.fluid.size();
         const auto& x = s.fluid.position();
         const auto& v = s.fluid.velocity();
@@ -107,12 +100,11 @@ public:
 
         const Scalar rho0 = rho0_, delta = delta_;
         const bool clamp = clampNegative_;
-        const WallMasses walls = wallMassesOf(s, wallVolume_);
         Scalar* q = pOverRho2_.data();
         int iterations = 0;
         CompressionError err;
         for (;;) {
-            densityWithWalls(s, predicted_, wallVolume_, rhoPredicted_);
+            summationDensity(s, predicted_, rhoPredicted_);
             err = compressionError(rhoPredicted_, rho0);
             if (controls_.done(iterations, err.max, err.avg)) break;
 #pragma omp parallel for schedule(static)
@@ -122,7 +114,7 @@ public:
                 const Scalar r = std::max(rho[i], rho0);
                 q[i] = p[i] / (r * r);
             }
-            symmetricPressureAcceleration(s, x, q, walls, [&](std::size_t i, const Vec3& ap) {
+            symmetricPressureAcceleration(s, x, q, [&](std::size_t i, const Vec3& ap) {
                 pressureAcc_[i] = ap;
                 predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + ap));
             });
@@ -133,14 +125,12 @@ public:
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
     }
 
-    Scalar soundSpeed() const override { return 0; }
     bool isIterative() const override { return true; }
     SolverStats lastSolve() const override { return stats_; }
 
 private:
     Scalar rho0_;
-    bool clampNegative_, adaptiveWalls_;
-    std::vector<Scalar> wallVolume_;
+    bool clampNegative_;
     IterativeSolverControls controls_;
     LatticeGradientSums prototype_;
     // δ is scaled down where a lattice wave's correction would exceed this gain (latticeMaxCorrectionGain):

@@ -5,7 +5,7 @@
 //   pressure { type wcsph; gamma 7; soundSpeed 20; clampNegativePressure yes; }
 #include "PressureModel.hpp"
 #include "Plugin.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "TaitEquationOfState.hpp"
 
 namespace {
@@ -15,22 +15,13 @@ class Wcsph final : public PressureModel {
 public:
     explicit Wcsph(const ModelContext& c) { eos_.read(c.dict, c.physics.rho0); }
 
-    void initialise(SphSystem& s) override { eos_.initialise(s); }
-
-    void computeDensity(SphSystem& s) override {
-        auto& rho = s.fluid.density();
-        auto& p = s.fluid.pressure();
-        summationDensity(s, s.fluid.position(), rho);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < rho.size(); ++i) p[i] = eos_.pressure(rho[i]);
+    Scalar soundSpeed(const SceneConstants& c, const PhysicalParameters& physics) const override {
+        return eos_.resolveSoundSpeed(c, physics);
     }
+    void initialise(Scene& s) override { eos_.initialise(s); }
 
-    void addPressureAcceleration(SphSystem& s, Scalar) override {
-        addSymmetricPressureAcceleration(s, s.fluid.position(), s.fluid.pressure(), s.fluid.density(),
-                                         s.fluid.acceleration(), WallMasses::ofBoundaryModel(s), pOverRho2_);
-    }
-
-    Scalar soundSpeed() const override { return eos_.soundSpeed; }
+    void computeDensity(Scene& s) override { eos_.densityAndPressure(s); }
+    void addPressureAcceleration(Scene& s, Scalar) override { addSymmetricPressureAcceleration(s, pOverRho2_); }
 
 private:
     TaitEquationOfState eos_;

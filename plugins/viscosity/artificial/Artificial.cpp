@@ -1,77 +1,69 @@
 // artificial — Monaghan (1992) artificial viscosity (MODELS.md "Viscosity"):
 // a_i = −Σ_j m_j Π_ij ∇_i W_ij,  Π_ij = −α c̄ μ_ij / ρ̄_ij for v_ij·r_ij < 0 (else 0),
 // μ_ij = h v_ij·r_ij / (r² + 0.01 h²), with h the support radius, c̄ the sound speed.
-// Walls act as particles at rest with the fluid particle's density (wallFactor scales them;
-// 0 = free slip). Pairwise antisymmetric: momentum is conserved among fluid particles. ∇W_ij is
-// read from the pressure model's cache of the step's pairs when it keeps one (dfsph).
+// Walls act as particles of the fluid particle's density moving with the velocity the boundary
+// model gives viscous terms (the wall's own, or Adami's no-slip extrapolation); wallFactor scales
+// them (0 = free slip). Pairwise antisymmetric: momentum is conserved among fluid particles.
 //
 //   viscosity { type artificial; alpha 0.05; soundSpeed 20; wallFactor 1; }
 #include "Plugin.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "ViscosityModel.hpp"
 
 namespace {
 using namespace spindrift;
+
+// Π_ij without its constant factors: v_ij·r_ij / ((r² + ε) ρ̄_ij) ∇W_ij for approaching pairs.
+struct ArtificialViscosityTerm {
+    struct Sum {
+        Vec3 fluid = Vec3::Zero(), wall = Vec3::Zero();
+    };
+    static constexpr bool usesGradient = true;
+    struct Particle {
+        Vec3 v;
+        Scalar rho;
+    };
+    const Vec3* v;
+    const Scalar* rho;
+    Scalar eps; // 0.01 h²
+    Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
+    void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
+        // approaching pairs only; min() instead of a branch (taken for half the pairs, unpredictably)
+        const Scalar vr = std::min((pi.v - v[q.j]).dot(q.r), Scalar(0));
+        sum.fluid += (vr / ((q.r2 + eps) * (pi.rho + rho[q.j]))) * q.gradW;
+    }
+    void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
+        const Scalar vr = std::min((pi.v - q.wall.vViscous[q.j]).dot(q.r), Scalar(0));
+        sum.wall += (q.mass() * vr / (q.r2 + eps)) * q.gradW;
+    }
+};
 
 class Artificial final : public ViscosityModel {
 public:
     explicit Artificial(const ModelContext& c)
         : alpha_(c.dict.getOrDefault<double>("alpha", 0.05)),
           soundSpeed_(c.dict.found("soundSpeed") ? c.dict.get<double>("soundSpeed") : 0.0),
-          wallFactor_(c.dict.getOrDefault<double>("wallFactor", 1.0)) {
+          wallFactor_(c.dict.getOrDefault<double>("wallFactor", 1.0)), soundSpeedLocation_(c.dict.locationOf("soundSpeed")) {
         if (alpha_ < 0) throw InputError(c.dict.locationOf("alpha"), "alpha must not be negative", "alpha");
-        soundSpeedLocation_ = c.dict.locationOf("soundSpeed");
     }
 
-    void initialise(SphSystem& s) override {
-        if (soundSpeed_ <= 0) soundSpeed_ = s.soundSpeed;
+    void initialise(Scene& s) override {
+        if (soundSpeed_ <= 0) soundSpeed_ = s.constants.soundSpeed;
         if (soundSpeed_ <= 0)
             throw InputError(soundSpeedLocation_, "artificial viscosity needs a sound speed: the pressure "
                                                   "model has none (incompressible), so give 'soundSpeed'", "soundSpeed");
     }
 
-    void addAcceleration(SphSystem& s, Scalar) override {
-        const auto& kt = s.kernel;
-        const Scalar m = s.fluid.particleMass(), h = kt.supportRadius(), eps = Scalar(0.01) * h * h;
-        const Scalar ac = alpha_ * soundSpeed_;
-        const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
+    void addAcceleration(Scene& s, Scalar) override {
+        const Scalar m = s.fluid.particleMass(), h = s.constants.supportRadius, ach = alpha_ * soundSpeed_ * h;
         const auto& rho = s.fluid.density();
         auto& a = s.fluid.acceleration();
-        const auto& xb = s.boundary.position();
-        const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
-        const Scalar wall = wallFactor_;
-        // −m Π_ij ∇W_ij = 2 m α c h · v_ij·r_ij / ((r² + ε)(ρ_i + ρ_j)) ∇W_ij: one division a pair
-        const Scalar fluidScale = 2 * m * ac * h, wallScale = wall * ac * h;
-        const auto& ff = s.search.fluidNeighbours();
-        // ∇W_ij from the pressure model's cache of the step's pairs when it keeps one, else the table
-        const Vec3* cached = s.fluidPairGradients ? s.fluidPairGradients->data() : nullptr;
-        const auto pass = [&](auto gradient) {
-            forEachParticleBalanced(s.search, [&](std::size_t i) {
-                const Vec3 vi = v[i];
-                const Scalar rhoi = rho[i];
-                Vec3 acc = Vec3::Zero();
-                std::uint32_t k = ff.offsets[i];
-                forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                    // approaching pairs only; min() instead of a branch (taken for about half
-                    // the pairs, unpredictably)
-                    const Scalar vr = std::min((vi - v[j]).dot(rij), Scalar(0));
-                    acc += (vr / ((r2 + eps) * (rhoi + rho[j]))) * gradient(k++, rij, r2);
-                });
-                acc *= fluidScale;
-                if (psi && wall != 0) {
-                    Vec3 accWall = Vec3::Zero();
-                    forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                        const Scalar vr = std::min(vi.dot(rib), Scalar(0));
-                        accWall += (psi[b] * vr / (r2 + eps)) * kt.gradWSq(rib, r2);
-                    });
-                    acc += (wallScale / rhoi) * accWall;
-                }
-                a[i] += acc;
-            });
-        };
-        if (cached) pass([&](std::uint32_t k, const Vec3&, Scalar) { return cached[k]; });
-        else pass([&](std::uint32_t, const Vec3& rij, Scalar r2) { return kt.gradWSq(rij, r2); });
+        // −m Π_ij ∇W_ij = 2 m α c h · v_ij·r_ij / ((r² + ε)(ρ_i + ρ_j)) ∇W_ij; walls with ρ_b = ρ_i
+        const Scalar fluidScale = 2 * m * ach, wallScale = wallFactor_ * ach;
+        const ArtificialViscosityTerm term{s.fluid.velocity().data(), rho.data(), Scalar(0.01) * h * h};
+        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const auto& sum) {
+            a[i] += fluidScale * sum.fluid + (wallScale / rho[i]) * sum.wall;
+        });
     }
 
 private:

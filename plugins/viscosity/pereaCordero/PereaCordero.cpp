@@ -15,19 +15,53 @@
 // exponent in SI units, where Γ ≈ 1 for water; a scale comparable to neighbour relative
 // speeds (e.g. 0.1 m/s) makes Γ act.
 // μ: `mu` (dynamic, Pa s, uniform) if given, else μ_i = ρ_i ν with ν from fluidProperties.
-// Walls: no-slip particles at rest with the fluid particle's density and viscosity
-// (wallFactor scales them; 0 = free slip).
+// Walls: their particles with the fluid particle's density and viscosity, moving with the
+// velocity the boundary model gives viscous terms (wallFactor scales them; 0 = free slip).
 //
 //   viscosity { type pereaCordero; form difference; mu 0.26; dampingScale 0.1; wallFactor 1; }
 #include "Log.hpp"
 #include "Plugin.hpp"
-#include "SphOperators.hpp"
+#include "PairLoop.hpp"
 #include "ViscosityModel.hpp"
 
 #include <sstream>
 
 namespace {
 using namespace spindrift;
+
+// The damped pair term: m_j ∇²W_ij Γ_ij times the velocity part of the chosen form.
+struct DampedViscosityTerm {
+    using Sum = Vec3;
+    struct Particle {
+        Vec3 v;
+        Scalar rho, c; // c = μ_i/ρ_i²
+    };
+    const KernelTable& kt;
+    const Vec3* v;
+    const Scalar* rho;
+    Scalar m, mu, nu, g, wallFactor; // Γ = exp(−g |v_ji| / (ρ_i ρ_j r)), g = 2 h ρ0² / U
+    bool constantMu, paper, visitsWalls;
+    Scalar muOverRho2(Scalar r) const { return constantMu ? mu / (r * r) : nu / r; }
+    Scalar gamma(const Vec3& dv, Scalar rhoiRhoj, Scalar r) const {
+        const Scalar num = g * dv.norm();
+        return num > 0 ? std::exp(-num / (rhoiRhoj * r)) : Scalar(1);
+    }
+    Particle particle(std::size_t i) const { return {v[i], rho[i], muOverRho2(rho[i])}; }
+    void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
+        const Scalar r = std::sqrt(q.r2);
+        const Vec3 dv = v[q.j] - pi.v;
+        const Scalar w = m * kt.laplacian(r) * gamma(dv, pi.rho * rho[q.j], r), cj = muOverRho2(rho[q.j]);
+        if (paper) sum += w * (cj * v[q.j] + pi.c * pi.v);
+        else sum += (w * Scalar(0.5) * (pi.c + cj)) * dv;
+    }
+    // the wall's particles with ρ_b = ρ_i and μ_b = μ_i, moving with the velocity viscous terms see
+    void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
+        const Scalar r = std::sqrt(q.r2);
+        const Vec3 vb = q.wall.vViscous[q.j], dv = vb - pi.v;
+        const Scalar w = wallFactor * q.mass() * kt.laplacian(r) * gamma(dv, pi.rho * pi.rho, r) * pi.c;
+        sum += paper ? Vec3(w * (vb + pi.v)) : Vec3(w * dv);
+    }
+};
 
 class PereaCordero final : public ViscosityModel {
 public:
@@ -56,47 +90,14 @@ public:
 
     Scalar timeStepViscosity() const override { return constantMu_ ? mu_ / rho0_ : nu_; }
 
-    void initialise(SphSystem& s) override { s.kernel.enableLaplacian(); }
+    void initialise(Scene& s) override { s.kernel.enableLaplacian(); }
 
-    void addAcceleration(SphSystem& s, Scalar) override {
-        const auto& kt = s.kernel;
-        const Scalar m = s.fluid.particleMass(), h = kt.supportRadius();
-        const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
-        const auto& rho = s.fluid.density();
-        auto& a = s.fluid.acceleration();
-        const auto& xb = s.boundary.position();
-        const Scalar* psi = s.boundaryMass ? s.boundaryMass->data() : nullptr;
-        const bool constantMu = constantMu_, paper = paperForm_;
-        const Scalar mu = mu_, nu = nu_, wall = wallFactor_;
-        // Γ = exp(−g |v_ji| / (ρ_i ρ_j r)),  g = 2 h ρ0² / U
-        const Scalar g = 2 * h * rho0_ * rho0_ / dampingScale_;
-        auto muOverRho2 = [&](Scalar r) { return constantMu ? mu / (r * r) : nu / r; };
-        auto gamma = [&](const Vec3& dv, Scalar rhoiRhoj, Scalar r) {
-            const Scalar num = g * dv.norm();
-            return num > 0 ? std::exp(-num / (rhoiRhoj * r)) : Scalar(1);
-        };
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            const Scalar ci = muOverRho2(rho[i]);
-            Vec3 acc = Vec3::Zero();
-            forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3&, Scalar r2) {
-                const Scalar r = std::sqrt(r2);
-                const Vec3 dv = v[j] - v[i];
-                const Scalar w = m * kt.laplacian(r) * gamma(dv, rho[i] * rho[j], r);
-                const Scalar cj = muOverRho2(rho[j]);
-                if (paper) acc += w * (cj * v[j] + ci * v[i]);
-                else acc += (w * Scalar(0.5) * (ci + cj)) * dv;
-            });
-            if (psi && wall != 0)
-                forEachNeighbour(s.search.boundaryNeighbours(), x, xb, i, [&](Index b, const Vec3&, Scalar r2) {
-                    const Scalar r = std::sqrt(r2);
-                    const Vec3 dv = -v[i]; // wall at rest, ρ_b = ρ_i, μ_b = μ_i
-                    const Scalar w = wall * psi[b] * kt.laplacian(r) * gamma(dv, rho[i] * rho[i], r) * ci;
-                    acc += paper ? Vec3(w * v[i]) : Vec3(w * dv);
-                });
-            a[i] += acc;
-        }
+    void addAcceleration(Scene& s, Scalar) override {
+        const Scalar h = s.constants.supportRadius;
+        const DampedViscosityTerm term{s.kernel, s.fluid.velocity().data(), s.fluid.density().data(),
+                                       s.fluid.particleMass(), mu_, nu_, 2 * h * rho0_ * rho0_ / dampingScale_,
+                                       wallFactor_, constantMu_, paperForm_, wallFactor_ != 0};
+        addPairAcceleration(s, term);
     }
 
 private:

@@ -1,0 +1,243 @@
+// Spindrift — the pair loop, written once: every fluid particle i against its fluid neighbours j
+// and the particles b of every wall system, on the step's neighbour lists, in the balanced
+// parallel schedule of the search (forEachParticleBalanced), with the wall masses and the
+// cached pair gradients. A model supplies only a pair term: what one neighbour contributes.
+//
+//   struct ViscousTerm {                       // a pair term
+//       using Sum = Vec3;                      // what the loop sums for particle i
+//       static constexpr bool usesGradient = true; // the loop fills pair.gradW (= ∇_i W_ij)
+//       struct Particle { Vec3 v; Scalar rho; };   // i's own values, read once
+//       Particle particle(std::size_t i) const;
+//       void fluid(const Particle&, const Pair&, Sum&) const;     // neighbour j of the fluid
+//       void wall(const Particle&, const WallPair&, Sum&) const;  // particle b of a wall
+//   };
+//   addPairAcceleration(scene, ViscousTerm{...});   // a_i += Σ, or
+//   forEachPairSum(scene, x, term, [&](std::size_t i, const Particle& pi, const Sum& sum) { ... });
+//
+// A term without a wall() member leaves the walls out, as does one whose `bool visitsWalls`
+// member is false at run time (a wallFactor of 0); one with `static constexpr bool
+// visitsFluid = false` visits only the walls (its fluid() is never called). The loop reads positions x (the fluid's
+// own or predicted ones, e.g. PCISPH's); the walls are where their motion puts them at the
+// evaluation's time. Results are bit for bit independent of the thread count: each i is summed
+// by one thread in list order.
+#pragma once
+
+#include "Scene.hpp"
+
+#include <array>
+
+namespace spindrift {
+
+// f(j, r_ij, r²) for every neighbour j of particle i in 'list' (positions xi of the set i
+// belongs to, xj of the neighbours' set). r_ij is the nearest periodic image when the domain
+// is periodic.
+template <class F>
+inline void forEachNeighbour(const NeighbourList& list, const std::vector<Vec3>& xi,
+                             const std::vector<Vec3>& xj, std::size_t i, F&& f) {
+    const Vec3 x = xi[i];
+    if (list.periodic) {
+        for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) {
+            const Index j = *it;
+            Vec3 rij = x - xj[j];
+            list.periodic->minimumImage(rij);
+            f(j, rij, rij.squaredNorm());
+        }
+        return;
+    }
+    for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) {
+        const Index j = *it;
+        const Vec3 rij = x - xj[j];
+        f(j, rij, rij.squaredNorm());
+    }
+}
+
+// One neighbour as the loop hands it to a term.
+struct Pair {
+    Index j;         // the neighbour, in its system
+    Vec3 r;          // x_i − x_j (nearest periodic image)
+    Scalar r2;       // |r|²
+    Vec3 gradW;      // ∇_i W_ij (terms with usesGradient; else zero)
+    std::uint32_t k; // the pair's place in its list (for data kept per pair)
+};
+
+// A wall system's data as the pair terms read it (pointers into its fields).
+struct WallView {
+    const Vec3* x;             // positions
+    const Vec3* v;             // its own velocity (zero when fixed)
+    const Vec3* vViscous;      // the velocity viscous terms see (Adami's no-slip extrapolation, or v)
+    const Scalar* mass;        // M_b of the boundary model
+    const Scalar* p;           // its own pressure and density (when not mirrored)
+    const Scalar* rho;
+    bool mirrored;             // pressure and density are those of the fluid particle i
+};
+
+// A wall neighbour: the pair, and the wall it belongs to.
+struct WallPair : Pair {
+    const WallView& wall;
+    Scalar mass() const { return wall.mass[j]; }
+};
+
+inline WallView viewOf(const WallSystem& w) {
+    return {w.particles.position().data(), w.particles.velocity().data(), w.velocitySeenByViscosity().data(),
+            w.mass ? w.mass->data() : nullptr, w.particles.pressure().data(), w.particles.density().data(),
+            w.pressureMirrored};
+}
+
+namespace detail {
+template <class Term>
+concept HasWallTerm = requires(const Term& t, const typename Term::Particle& pi, const WallPair& p,
+                               typename Term::Sum& s) { t.wall(pi, p, s); };
+template <class Term> constexpr bool usesGradient() {
+    if constexpr (requires { Term::usesGradient; }) return Term::usesGradient;
+    else return false;
+}
+// A zero sum: Sum{} for scalars and structs, Zero() for Eigen vectors (whose default
+// constructor leaves them uninitialised).
+template <class Sum> Sum zeroSum() {
+    if constexpr (requires { Sum::Zero(); }) return Sum::Zero();
+    else return Sum{};
+}
+template <class Term> constexpr bool visitsFluid() {
+    if constexpr (requires { Term::visitsFluid; }) return Term::visitsFluid;
+    else return true;
+}
+} // namespace detail
+
+// Calls out(i, particle_i, Σ) for every fluid particle i, Σ = Σ_j term.fluid + Σ_walls Σ_b
+// term.wall, at fluid positions x. The pair gradients come from the scene's cache when it holds
+// them for x (the fluid's own positions and the current lists), else from the kernel table.
+template <class Term, class Out>
+void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term, Out&& out) {
+    using Sum = typename Term::Sum;
+    constexpr bool gradient = detail::usesGradient<Term>();
+    constexpr bool walls = detail::HasWallTerm<Term>;
+    const KernelTable& kt = s.kernel;
+    const NeighbourList& ff = s.search.fluidNeighbours();
+    // the walls that take part: those with a boundary model's masses
+    std::array<WallView, NeighbourSearch::maxLists> views;
+    std::array<std::size_t, NeighbourSearch::maxLists> wallIndex;
+    std::size_t wallCount = 0;
+    bool wallsWanted = walls;
+    if constexpr (requires { term.visitsWalls; }) wallsWanted = walls && term.visitsWalls;
+    if (wallsWanted)
+        for (std::size_t k = 0; k < s.walls.size(); ++k)
+            if (s.walls[k].mass) {
+                views[wallCount] = viewOf(s.walls[k]);
+                wallIndex[wallCount++] = k;
+            }
+    const Vec3* cached = gradient && &x == &s.fluid.position() && s.gradients.validFor(s.search)
+                             ? s.gradients.values.data()
+                             : nullptr;
+    const auto pass = [&](auto fluidGradient) {
+        forEachParticleBalanced(s.search, [&](std::size_t i) {
+            const auto pi = term.particle(i);
+            Sum sum = detail::zeroSum<Sum>();
+            if constexpr (detail::visitsFluid<Term>()) {
+                std::uint32_t k = ff.offsets[i];
+                forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
+                    term.fluid(pi, Pair{j, rij, r2, fluidGradient(k, rij, r2), k}, sum);
+                    ++k;
+                });
+            }
+            if constexpr (walls)
+                for (std::size_t w = 0; w < wallCount; ++w) {
+                    const WallView& view = views[w];
+                    const std::vector<Vec3>& xb = s.walls[wallIndex[w]].particles.position();
+                    const NeighbourList& list = s.search.wallNeighbours(wallIndex[w]);
+                    std::uint32_t k = list.offsets[i];
+                    forEachNeighbour(list, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                        const Vec3 g = gradient ? kt.gradWSq(rib, r2) : Vec3::Zero();
+                        term.wall(pi, WallPair{{b, rib, r2, g, k++}, view}, sum);
+                    });
+                }
+            out(i, pi, sum);
+        }, wallCount > 0 ? NeighbourSearch::PairWork::FluidAndWall : NeighbourSearch::PairWork::Fluid);
+    };
+    if (cached) pass([&](std::uint32_t k, const Vec3&, Scalar) { return cached[k]; });
+    else if constexpr (gradient) pass([&](std::uint32_t, const Vec3& rij, Scalar r2) { return kt.gradWSq(rij, r2); });
+    else pass([](std::uint32_t, const Vec3&, Scalar) { return Vec3::Zero(); });
+}
+
+// out(i, particle_i, Σ) for every fluid particle, Σ = Σ_j term.cached(particle_i, j, ∇W_ij) over
+// its fluid neighbours with the scene's cached gradients (they must be valid): no positions are
+// read, for solvers that linearise about the positions of one search (dfsph).
+template <class Term, class Out> void forEachCachedPairSum(const Scene& s, const Term& term, Out&& out) {
+    using Sum = typename Term::Sum;
+    const NeighbourList& ff = s.search.fluidNeighbours();
+    const Vec3* g = s.gradients.values.data();
+    forEachParticleBalanced(s.search, [&](std::size_t i) {
+        const auto pi = term.particle(i);
+        Sum sum = detail::zeroSum<Sum>();
+        for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k) term.cached(pi, ff.indices[k], g[k], sum);
+        out(i, pi, sum);
+    }, NeighbourSearch::PairWork::Fluid);
+}
+
+// a_i += Σ of the term (Sum = Vec3) for every fluid particle, at the fluid's positions.
+template <class Term> void addPairAcceleration(Scene& s, const Term& term) {
+    auto& a = s.fluid.acceleration();
+    forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += sum; });
+}
+
+// Summation density ρ_i = m (W(0) + Σ_j W_ij) + Σ_walls Σ_b M_b W_ib at positions x.
+struct SummationDensityTerm {
+    struct Sum {
+        Scalar fluid = 0, wall = 0; // Σ_j W_ij, Σ_b M_b W_ib
+    };
+    struct Particle {};
+    const KernelTable& kt;
+    Particle particle(std::size_t) const { return {}; }
+    void fluid(const Particle&, const Pair& p, Sum& sum) const { sum.fluid += kt.WSq(p.r2); }
+    void wall(const Particle&, const WallPair& p, Sum& sum) const { sum.wall += p.mass() * kt.WSq(p.r2); }
+};
+inline void summationDensity(const Scene& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
+    const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0();
+    rho.resize(x.size());
+    forEachPairSum(s, x, SummationDensityTerm{s.kernel}, [&](std::size_t i, const auto&, const auto& sum) {
+        rho[i] = m * (w0 + sum.fluid) + sum.wall;
+    });
+}
+
+// The symmetric pressure acceleration from q = p/ρ² (Monaghan 1992):
+//   a_i = −Σ_j m (q_i + q_j) ∇_i W_ij − Σ_b M_b (q_i + q_b) ∇_i W_ib,
+// q_b = q_i on a wall that mirrors the fluid's pressure, else its own p_b/ρ_b².
+struct SymmetricPressureTerm {
+    struct Sum {
+        Vec3 fluid = Vec3::Zero(), wall = Vec3::Zero(); // Σ_j (q_i + q_j) ∇W_ij, Σ_b M_b (q_i + q_b) ∇W_ib
+    };
+    static constexpr bool usesGradient = true;
+    using Particle = Scalar; // q_i
+    const Scalar* q;
+    Particle particle(std::size_t i) const { return q[i]; }
+    void fluid(Scalar qi, const Pair& p, Sum& sum) const { sum.fluid += (qi + q[p.j]) * p.gradW; }
+    void wall(Scalar qi, const WallPair& p, Sum& sum) const {
+        const Scalar qb = p.wall.mirrored ? qi : p.wall.p[p.j] / (p.wall.rho[p.j] * p.wall.rho[p.j]);
+        sum.wall += (p.mass() * (qi + qb)) * p.gradW;
+    }
+};
+
+// out(i, a_i) with a_i the symmetric pressure acceleration of q = p/ρ² at positions x ('out'
+// lets a solver use a_i in the same pass: PCISPH predicts the next positions with it).
+template <class Out>
+inline void symmetricPressureAcceleration(const Scene& s, const std::vector<Vec3>& x, const Scalar* q, Out&& out) {
+    const Scalar m = s.fluid.particleMass();
+    forEachPairSum(s, x, SymmetricPressureTerm{q}, [&](std::size_t i, const auto&, const auto& sum) {
+        out(i, Vec3(-(m * sum.fluid + sum.wall)));
+    });
+}
+
+// a_i += the symmetric pressure acceleration of p and ρ at the fluid's positions. p/ρ² is taken
+// once per particle (in 'pOverRho2', the caller's scratch storage), not once per pair.
+inline void addSymmetricPressureAcceleration(Scene& s, std::vector<Scalar>& pOverRho2) {
+    const auto& p = s.fluid.pressure();
+    const auto& rho = s.fluid.density();
+    const std::size_t n = p.size();
+    pOverRho2.resize(n);
+    Scalar* q = pOverRho2.data();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) q[i] = p[i] / (rho[i] * rho[i]);
+    auto& a = s.fluid.acceleration();
+    symmetricPressureAcceleration(s, s.fluid.position(), q, [&](std::size_t i, const Vec3& ai) { a[i] += ai; });
+}
+
+} // namespace spindrift
