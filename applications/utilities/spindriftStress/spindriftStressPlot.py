@@ -44,6 +44,8 @@ def time_series_figure(out, test, title, panels, draw):
     for j, r in enumerate(rows):
         label = r["combination"] + ("" if r["status"] == "ok" else " (%s)" % r["status"])
         draw(axes, r, "C%d" % (j % 10), label)
+        if label not in axes[0].get_legend_handles_labels()[1]:  # a run that wrote no series
+            axes[0].plot([], [], ls="none", label=label + ": no series")
     for ax, (xlabel, ylabel, panel_title) in zip(axes, panels):
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
@@ -80,7 +82,7 @@ def max_delta_t(out):
         return
     plt = sv.pyplot()
     from matplotlib.patches import Patch
-    names = ["\n".join(textwrap.wrap(r["combination"].replace("_", " "), 36)) for r in rows]
+    names = ["\n".join(textwrap.wrap(r["combination"].replace("_", " "), 36, break_on_hyphens=False)) for r in rows]
     values = [float(r["courantOnH"]) if r["courantOnH"] else 0.0 for r in rows]
     fig, ax = plt.subplots(figsize=(9, 1.0 + 0.45 * sum(n.count("\n") + 1 for n in names)))
     y = range(len(rows))
@@ -95,6 +97,7 @@ def max_delta_t(out):
     ax.invert_yaxis()
     ax.margins(x=0.08)
     ax.set_xlabel("largest stable fixed Δt [h / c$_0$] (h = kernel support radius, c$_0$ = sound speed)")
+    ax.set_ylabel("model combination (the models it changes)")
     ax.set_title("(b) largest stable time step (still-water tank)")
     ax.grid(axis="x", alpha=0.3)
     meaning = {"ok": "stable up to this step", "atCap": "stable at every step tried (≥)"}
