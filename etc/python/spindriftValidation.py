@@ -4,9 +4,9 @@ postProcessing .dat files, written time directories and their fluid.vtp, CSV tab
 plotting conventions (Agg backend, legends beside or below the data, labels that do not overlap,
 figures saved with nothing cut off).
 
-A script finds this module through $SPINDRIFT_DIR/etc/python (etc/RunFunctions exports
-SPINDRIFT_DIR), through the source tree it is in, or beside it (installed next to the utilities'
-plotting scripts in share/spindrift/).
+A script finds this module in $SPINDRIFT_DIR/etc/python (etc/RunFunctions exports SPINDRIFT_DIR)
+or in the etc/python of the source tree it is in; the utilities' plotting scripts, installed in
+share/spindrift/, also in the etc/python beside them, where the module is installed.
 """
 import csv
 import os
