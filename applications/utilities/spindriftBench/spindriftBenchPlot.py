@@ -31,7 +31,7 @@ def main():
     if use_figure:
         label, definition = sv.figure_definition(ok[0]["figureName"])
     else:
-        label, definition = "max density error [%]", "max density error: the largest |ρ − ρ0| / ρ0 over the run."
+        label, definition = "max density error [%]", "max density error: the largest compression (ρ − ρ0) / ρ0 of a particle over the run (the solver's End: line)."
 
     def error(r):
         v = r["figure"] if use_figure else r["maxDensityError_pct"]
