@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <regex>
 #include <set>
 #include <signal.h>
@@ -21,6 +22,7 @@
 extern char** environ;
 
 namespace fs = std::filesystem;
+namespace po = boost::program_options;
 
 namespace spindrift::bench {
 namespace {
@@ -114,6 +116,35 @@ std::vector<Combination> combinations(const std::vector<VaryOption>& options) {
     return out;
 }
 
+std::optional<int> parseCommandLine(int argc, char** argv, const po::options_description& options,
+                                    const std::string& utility, po::variables_map& vm) {
+    try {
+        const auto style = po::command_line_style::unix_style | po::command_line_style::allow_long_disguise;
+        po::store(po::command_line_parser(argc, argv).options(options).style(style).run(), vm);
+        po::notify(vm);
+    } catch (const std::exception& e) {
+        std::cerr << utility << ": " << e.what() << "\n" << options << std::endl;
+        return 2;
+    }
+    if (vm.count("help")) {
+        std::cout << options << std::endl;
+        return 0;
+    }
+    return std::nullopt;
+}
+
+std::vector<Combination> requestedCombinations(const po::variables_map& vm) {
+    std::vector<VaryOption> vary;
+    if (vm.count("vary"))
+        for (const auto& v : vm["vary"].as<std::vector<std::string>>()) vary.push_back(parseVary(v));
+    auto combos = combinations(vary);
+    if (vm.count("combination")) {
+        if (vary.empty()) combos.clear();
+        for (const auto& text : vm["combination"].as<std::vector<std::string>>()) combos.push_back(parseCombination(text));
+    }
+    return combos;
+}
+
 std::string combinationName(const Combination& c) {
     if (c.empty()) return "base";
     std::string s;
@@ -147,6 +178,10 @@ std::string combinationLabel(const Combination& c) {
     std::string s;
     for (const auto& o : c) s += (s.empty() ? "" : " ") + o.key + "=" + o.value;
     return s;
+}
+
+void printLabel(const Combination& c) {
+    std::cout << "  " << std::left << std::setw(60) << combinationLabel(c) << ' ' << std::flush;
 }
 
 std::string kindOfTypeKey(const std::string& key) {
@@ -354,6 +389,26 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const fs::path& w
     return result;
 }
 
+RunOutcome runOutcome(const ProcessResult& process, const fs::path& solverLog, double timeoutSeconds,
+                      OutcomeRules rules) {
+    RunOutcome o;
+    o.end = parseEndLine(solverLog);
+    const std::string blowUp = findLine(solverLog, "blow-up");
+    if (process.timedOut) {
+        o.status = "timeout";
+        o.note = "stopped after " + csvNumber(timeoutSeconds, 10) + " s";
+    } else if (!blowUp.empty() && (rules.anyBlowUp || !o.end.found)) {
+        o.status = "unstable";
+        o.note = blowUp.substr(blowUp.find("blow-up"));
+    } else if (process.status == 0 && (o.end.found || !rules.endLine)) {
+        o.status = "ok";
+    } else {
+        o.status = "failed";
+        o.note = lastLine(solverLog);
+    }
+    return o;
+}
+
 EndLine parseEndLine(const fs::path& logFile) {
     EndLine e;
     const std::string line = findLine(logFile, "End: ");
@@ -489,6 +544,21 @@ fs::path findScript(const std::string& name) {
                               fs::path(SPINDRIFT_UTILITIES_SOURCE_DIR) / "spindriftStress" / name})
         if (fs::exists(p)) return p;
     return {};
+}
+
+bool runPlotScript(const std::string& utility, const std::string& script, const std::vector<std::string>& arguments,
+                   const fs::path& output, double timeoutSeconds) {
+    const std::string python = findPython();
+    const fs::path path = findScript(script);
+    if (python.empty() || path.empty()) {
+        std::cerr << utility << ": warning: no python3 with matplotlib (or no " << script << "): nothing plotted\n";
+        return false;
+    }
+    std::vector<std::string> argv{python, path.string()};
+    argv.insert(argv.end(), arguments.begin(), arguments.end());
+    if (runProcess(argv, output, output / "log.plot", {}, timeoutSeconds).status == 0) return true;
+    std::cerr << utility << ": plotting failed, see " << (output / "log.plot").string() << '\n';
+    return false;
 }
 
 } // namespace spindrift::bench

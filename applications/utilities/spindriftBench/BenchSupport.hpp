@@ -1,6 +1,7 @@
-// Spindrift — what spindriftBench and spindriftStress share: model combinations from
-// `-vary "key=v1,v2"` options, dictionary overrides on a copy of a case, running the solver (or
-// a case's Allrun) as a child process with a time limit, reading its final "End:" line, CSV
+// Spindrift — what spindriftBench and spindriftStress share: their command line, model
+// combinations from `-vary "key=v1,v2"` and `-combination` options, dictionary overrides on a
+// copy of a case, running the solver (or a case's Allrun) as a child process with a time limit,
+// judging how it ended from its exit and its log (final "End:" line, blow-up message), CSV
 // output and the python3/matplotlib plotting scripts.
 //
 // Overrides. A key names an entry by its dictionary path, e.g. `pressure.type` (sphSchemes'
@@ -18,8 +19,8 @@
 #include "Case.hpp"
 #include "Dictionary.hpp"
 
+#include <boost/program_options.hpp>
 #include <filesystem>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,15 @@ Combination overridesFrom(const Dictionary& dict);
 // Cartesian product, the first option outermost; one empty combination for no options.
 std::vector<Combination> combinations(const std::vector<VaryOption>& options);
 
+// Parses a utility's command line (single-dash long options, as OpenFOAM's) into 'vm'. Returns
+// the exit status when the utility is done: 0 after printing the help (-help), 2 after printing
+// the error and the help; nothing when it goes on.
+std::optional<int> parseCommandLine(int argc, char** argv, const boost::program_options::options_description& options,
+                                    const std::string& utility, boost::program_options::variables_map& vm);
+// The combinations a command line asks for: the product of its -vary options, plus its
+// -combination options (alone when there is no -vary).
+std::vector<Combination> requestedCombinations(const boost::program_options::variables_map& vm);
+
 // "wcsph_cubicSpline_0.01": values joined by '_', characters unsafe in file names replaced.
 std::string combinationName(const Combination& c);
 // Names for a list of combinations: combinationName() when those are distinct, else every
@@ -55,6 +65,8 @@ std::string combinationName(const Combination& c);
 std::vector<std::string> uniqueNames(const std::vector<Combination>& combos);
 // "pressure.type=wcsph kernel.type=cubicSpline"
 std::string combinationLabel(const Combination& c);
+// Starts a combination's line of progress on stdout: its label, padded (the outcome follows).
+void printLabel(const Combination& c);
 
 // Model kinds named by `<sub-dictionary>.type` keys (kernel, pressure, ...): the kind whose
 // availability decides whether a combination can run; empty for other keys.
@@ -118,6 +130,22 @@ std::string findLine(const std::filesystem::path& logFile, const std::string& ne
 // The last non-empty line of a log.
 std::string lastLine(const std::filesystem::path& logFile);
 
+// How a run ended, from its exit status and the solver's log.
+struct RunOutcome {
+    std::string status; // ok | unstable | failed | timeout
+    std::string note;   // why it is not ok: the time limit, the blow-up message, the log's last line
+    EndLine end;        // the solver's final line, when it wrote one
+};
+struct OutcomeRules {
+    bool endLine = true;   // the solver writes an "End:" line (false for -dryRun)
+    bool anyBlowUp = false; // a blow-up the solver recovered from (onBlowUp reduceDeltaT) is unstable too
+};
+// timeout when the time limit stopped it; unstable when the log reports a blow-up (and no End:
+// line, unless rules.anyBlowUp); ok on exit 0 with the End: line (when expected); else failed,
+// with the log's last line as the note.
+RunOutcome runOutcome(const ProcessResult& process, const std::filesystem::path& solverLog, double timeoutSeconds,
+                      OutcomeRules rules = {});
+
 // Rows of a postProcessing .dat file (every start-time folder of postProcessing/<name>/ in
 // time order): the header's column names (Time first) and the numbers.
 struct Table {
@@ -133,6 +161,7 @@ class CsvWriter {
 public:
     CsvWriter(const std::filesystem::path& file, const std::vector<std::string>& columns);
     void row(const std::vector<std::string>& values);
+    std::size_t columns() const { return columns_; }
 private:
     std::filesystem::path file_;
     std::size_t columns_;
@@ -146,5 +175,9 @@ std::string findPython();
 // A plotting script shipped with the utilities: next to the executable, in
 // ../share/spindrift/, or in the source tree.
 std::filesystem::path findScript(const std::string& name);
+// Runs the plotting script 'script' with 'arguments' in 'output' (log in output/log.plot).
+// Returns whether it drew its plots; warns on stderr, as 'utility', when it could not.
+bool runPlotScript(const std::string& utility, const std::string& script, const std::vector<std::string>& arguments,
+                   const std::filesystem::path& output, double timeoutSeconds);
 
 } // namespace spindrift::bench

@@ -122,17 +122,9 @@ int main(int argc, char** argv) {
         ("noPlot", "do not draw bench.png")
         ("list", "list the combinations and stop");
     po::variables_map vm;
-    try {
-        const auto style = po::command_line_style::unix_style | po::command_line_style::allow_long_disguise;
-        po::store(po::command_line_parser(argc, argv).options(options).style(style).run(), vm);
-        po::notify(vm);
-        if (vm.count("help")) {
-            std::cout << options << std::endl;
-            return 0;
-        }
-        if (!vm.count("case")) throw std::runtime_error("-case is required");
-    } catch (const std::exception& e) {
-        std::cerr << "spindriftBench: " << e.what() << "\n" << options << std::endl;
+    if (const auto status = parseCommandLine(argc, argv, options, "spindriftBench", vm)) return *status;
+    if (!vm.count("case")) {
+        std::cerr << "spindriftBench: -case is required\n" << options << std::endl;
         return 2;
     }
     try {
@@ -141,14 +133,7 @@ int main(int argc, char** argv) {
         if (!fs::is_directory(caseDir / "system"))
             throw std::runtime_error("'" + caseDir.string() + "' is not a case (no system/)");
         const std::string caseName = fs::weakly_canonical(caseDir).filename().string();
-        std::vector<VaryOption> vary;
-        if (vm.count("vary"))
-            for (const auto& v : vm["vary"].as<std::vector<std::string>>()) vary.push_back(parseVary(v));
-        auto combos = combinations(vary);
-        if (vm.count("combination")) {
-            if (vary.empty()) combos.clear();
-            for (const auto& text : vm["combination"].as<std::vector<std::string>>()) combos.push_back(parseCombination(text));
-        }
+        const auto combos = requestedCombinations(vm);
         if (vm.count("list")) {
             const auto names = uniqueNames(combos);
             for (std::size_t k = 0; k < combos.size(); ++k) std::cout << names[k] << "  " << combinationLabel(combos[k]) << '\n';
@@ -192,7 +177,7 @@ int main(int argc, char** argv) {
             row.combination = c;
             row.name = names[k];
             const fs::path runDir = output / "runs" / row.name;
-            std::cout << "  " << std::left << std::setw(60) << combinationLabel(c) << ' ' << std::flush;
+            printLabel(c);
             const std::string missing = unavailableModel(c);
             if (!missing.empty()) {
                 row.status = "unavailable";
@@ -216,7 +201,13 @@ int main(int argc, char** argv) {
                     else
                         pr = runProcess({solver.string(), "-case", ".", "-threads", std::to_string(threads)}, runDir,
                                         solverLog, env, timeout);
-                    row.end = parseEndLine(solverLog);
+                    const RunOutcome outcome = runOutcome(pr, solverLog, timeout);
+                    row.status = outcome.status;
+                    row.note = outcome.note;
+                    row.end = outcome.end;
+                    // a case's Allrun says why it failed when the solver did not (or finished)
+                    if (row.status == "failed" && (row.note.empty() || row.end.found))
+                        row.note = lastLine(runDir / "log.Allrun");
                     if (hasAllrun) {
                         const std::string figure = findLine(runDir / "log.Allrun", "Figure: ");
                         static const std::regex pattern(R"(Figure: (\S+) = ([^ ]+))");
@@ -225,20 +216,6 @@ int main(int argc, char** argv) {
                             row.figureName = m[1];
                             row.figure = std::strtod(m[2].str().c_str(), nullptr);
                         }
-                    }
-                    const std::string blowUp = findLine(solverLog, "blow-up");
-                    if (pr.timedOut) {
-                        row.status = "timeout";
-                        row.note = "stopped after " + csvNumber(timeout, 3) + " s";
-                    } else if (!blowUp.empty() && !row.end.found) {
-                        row.status = "unstable";
-                        row.note = blowUp.substr(blowUp.find("blow-up"));
-                    } else if (row.end.found && pr.status == 0) {
-                        row.status = "ok";
-                    } else {
-                        row.status = "failed";
-                        const std::string solverLast = lastLine(solverLog);
-                        row.note = !solverLast.empty() && !row.end.found ? solverLast : lastLine(runDir / "log.Allrun");
                     }
                 } catch (const std::exception& e) {
                     row.status = "failed";
@@ -273,20 +250,11 @@ int main(int argc, char** argv) {
         }
         std::cout << "\nTable: " << (output / "bench.csv").string() << std::endl;
 
-        if (!vm.count("noPlot")) {
-            const std::string python = findPython();
-            const fs::path script = findScript("spindriftBenchPlot.py");
-            if (python.empty() || script.empty())
-                std::cerr << "spindriftBench: warning: no python3 with matplotlib (or no spindriftBenchPlot.py): "
-                             "bench.png not drawn\n";
-            else {
-                const auto pr = runProcess({python, script.string(), (output / "bench.csv").string(),
-                                            (output / "bench.png").string(), caseName + (quick ? " (quick)" : "")},
-                                           output, output / "log.plot", {}, 120);
-                if (pr.status == 0) std::cout << "Plot: " << (output / "bench.png").string() << std::endl;
-                else std::cerr << "spindriftBench: plotting failed, see " << (output / "log.plot").string() << '\n';
-            }
-        }
+        if (!vm.count("noPlot") &&
+            runPlotScript("spindriftBench", "spindriftBenchPlot.py",
+                          {(output / "bench.csv").string(), (output / "bench.png").string(), caseName + (quick ? " (quick)" : "")},
+                          output, 120))
+            std::cout << "Plot: " << (output / "bench.png").string() << std::endl;
         return 0;
     } catch (const std::exception& e) {
         std::cerr << "spindriftBench: error: " << e.what() << std::endl;

@@ -41,6 +41,7 @@
 #include <boost/program_options.hpp>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -86,12 +87,6 @@ struct Settings {
     int resolution = 0; // 0 = the test's default
     double stillWaterTime = 0;
     std::string userPresets;
-};
-
-struct Outcome {
-    std::string status, note; // ok | unstable | failed | timeout | unavailable
-    EndLine end;
-    fs::path dir;
 };
 
 std::string presetsText(double c0) {
@@ -143,29 +138,43 @@ public:
         return dir;
     }
 
-    Outcome run(const fs::path& dir, bool dryRun = false) {
-        Outcome o;
-        o.dir = dir;
+    RunOutcome run(const fs::path& dir, bool dryRun = false) {
         std::vector<std::string> argv{s_.solver.string(), "-case", ".", "-threads", std::to_string(s_.threads)};
         if (dryRun) argv.push_back("-dryRun");
         const fs::path log = dir / (dryRun ? "log.dryRun" : "log.spindrift");
         const auto pr = runProcess(argv, dir, log, {"OMP_NUM_THREADS=" + std::to_string(s_.threads)}, s_.timeout);
-        o.end = parseEndLine(log);
-        const std::string blowUp = findLine(log, "blow-up");
-        if (pr.timedOut) {
-            o.status = "timeout";
-            o.note = "stopped after " + num(s_.timeout) + " s";
-        } else if (!blowUp.empty()) {
-            o.status = "unstable";
-            o.note = blowUp.substr(blowUp.find("blow-up"));
-            o.note = o.note.substr(0, o.note.find(". The last good state"));
-        } else if (pr.status == 0 && (dryRun || o.end.found)) {
-            o.status = "ok";
-        } else {
-            o.status = "failed";
-            o.note = lastLine(log);
-        }
+        RunOutcome o = runOutcome(pr, log, s_.timeout, {.endLine = !dryRun, .anyBlowUp = true});
+        // the run directory goes: where its last good state was written means nothing
+        if (o.status == "unstable") o.note = o.note.substr(0, o.note.find(". The last good state"));
         return o;
+    }
+
+    // Writes the case for 'c' (prepare, into 'dir') and runs it: the solver, or 'execute' when
+    // given. An error on the way is a "failed" outcome.
+    RunOutcome attempt(const std::string& test, const Combination& c, const CaseText& t, fs::path& dir,
+                       const std::function<RunOutcome(const fs::path&)>& execute = nullptr) {
+        try {
+            dir = prepare(test, c, t);
+            return execute ? execute(dir) : run(dir);
+        } catch (const std::exception& e) {
+            return {"failed", e.what(), {}};
+        }
+    }
+
+    // Prints the combination's label; for one naming a model that is not built, writes its
+    // "unavailable" row to 'csv' and returns false.
+    bool available(const Combination& c, CsvWriter& csv) const {
+        printLabel(c);
+        const std::string missing = unavailableModel(c);
+        if (missing.empty()) return true;
+        std::vector<std::string> row(csv.columns());
+        row[0] = name(c);
+        row[1] = combinationLabel(c);
+        row[2] = "unavailable";
+        row.back() = missing + " is not built";
+        csv.row(row);
+        std::cout << "unavailable\n";
+        return false;
     }
 
     void finish(const fs::path& dir) {
@@ -253,24 +262,10 @@ void stillWater(Harness& h, const std::vector<Combination>& combos) {
                    "rhoErrMaxLate_pct", "levelDrift_dx", "kineticEnergyEnd", "note"});
     for (const auto& c : combos) {
         const std::string name = h.name(c);
-        std::cout << "  " << std::left << std::setw(60) << combinationLabel(c) << ' ' << std::flush;
+        if (!h.available(c, csv)) continue;
         std::vector<std::string> row{name, combinationLabel(c)};
-        const std::string missing = unavailableModel(c);
-        if (!missing.empty()) {
-            row.insert(row.end(), {"unavailable", "", "", "", "", "", "", "", missing + " is not built"});
-            csv.row(row);
-            std::cout << "unavailable\n";
-            continue;
-        }
-        Outcome o;
         fs::path dir;
-        try {
-            dir = h.prepare("stillWater", c, tank.text(control));
-            o = h.run(dir);
-        } catch (const std::exception& e) {
-            o.status = "failed";
-            o.note = e.what();
-        }
+        const RunOutcome o = h.attempt("stillWater", c, tank.text(control), dir);
         std::string speedEnd, speedLate, rhoLate, drift, keEnd;
         if (!dir.empty() && fs::exists(dir / "postProcessing/stats")) {
             const Table stats = readPostProcessing(dir, "stats");
@@ -325,13 +320,7 @@ void maxDeltaT(Harness& h, const std::vector<Combination>& combos) {
                                                       "courantOnH", "firstUnstableDeltaT_s", "runs", "reason", "note"});
     for (const auto& c : combos) {
         const std::string name = h.name(c);
-        std::cout << "  " << std::left << std::setw(60) << combinationLabel(c) << ' ' << std::flush;
-        const std::string missing = unavailableModel(c);
-        if (!missing.empty()) {
-            csv.row({name, combinationLabel(c), "unavailable", "", "", "", "", "", missing + " is not built"});
-            std::cout << "unavailable\n";
-            continue;
-        }
+        if (!h.available(c, csv)) continue;
         int runs = 0;
         std::string lastReason, failure;
         // true = stable
@@ -343,7 +332,7 @@ void maxDeltaT(Harness& h, const std::vector<Combination>& combos) {
                                         num(s.densityBound) + ";\nfunctions\n{\n    stats { type fieldStats; writeControl "
                                         "runTime; writeInterval " + num(T / 100) + "; }\n}\n";
             const fs::path dir = h.prepare("maxDeltaT", c, tank.text(control), "dt" + num(dt));
-            const Outcome o = h.run(dir);
+            const RunOutcome o = h.run(dir);
             bool ok = o.status == "ok";
             std::string reason = ok ? "" : o.status + ": " + o.note;
             if (o.status == "failed" || o.status == "timeout") failure = reason;
@@ -478,36 +467,24 @@ void jitter(Harness& h, const std::vector<Combination>& combos) {
                    "clusterFractionEnd", "rdfPeak_r_dx", "rdfPeak_g", "kineticEnergyMax", "kineticEnergyEnd", "note"});
     for (const auto& c : combos) {
         const std::string name = h.name(c);
-        std::cout << "  " << std::left << std::setw(60) << combinationLabel(c) << ' ' << std::flush;
-        const std::string missing = unavailableModel(c);
-        if (!missing.empty()) {
-            csv.row({name, combinationLabel(c), "unavailable", "", "", "", "", "", "", "", "", "", missing + " is not built"});
-            std::cout << "unavailable\n";
-            continue;
-        }
+        if (!h.available(c, csv)) continue;
         fs::path dir;
-        Outcome o;
-        try {
-            dir = h.prepare("jitter", c, t);
-            o = h.run(dir, true);
-            if (o.status == "ok") {
-                // displace the lattice written by the dry run
-                const fs::path file = dir / "0" / "fluid.vtp";
-                ParticleSet set = readVtp(file);
-                std::mt19937 rng(s.seed);
-                std::uniform_real_distribution<double> amplitude(0.1, 0.2), angle(0, 2 * M_PI);
-                for (auto& p : set.position()) {
-                    const double a = amplitude(rng) * dx, phi = angle(rng);
-                    p[0] = std::fmod(p[0] + a * std::cos(phi) + L, L);
-                    p[1] = std::fmod(p[1] + a * std::sin(phi) + L, L);
-                }
-                writeVtp(file, set);
-                o = h.run(dir);
+        // the dry run writes the lattice, displaced here before the run
+        const RunOutcome o = h.attempt("jitter", c, t, dir, [&](const fs::path& d) {
+            const RunOutcome dry = h.run(d, true);
+            if (dry.status != "ok") return dry;
+            const fs::path file = d / "0" / "fluid.vtp";
+            ParticleSet set = readVtp(file);
+            std::mt19937 rng(s.seed);
+            std::uniform_real_distribution<double> amplitude(0.1, 0.2), angle(0, 2 * M_PI);
+            for (auto& p : set.position()) {
+                const double a = amplitude(rng) * dx, phi = angle(rng);
+                p[0] = std::fmod(p[0] + a * std::cos(phi) + L, L);
+                p[1] = std::fmod(p[1] + a * std::sin(phi) + L, L);
             }
-        } catch (const std::exception& e) {
-            o.status = "failed";
-            o.note = e.what();
-        }
+            writeVtp(file, set);
+            return h.run(d);
+        });
         std::vector<std::string> row{name, combinationLabel(c), o.status, o.end.found ? csvNumber(o.end.wallSeconds, 4) : ""};
         if (o.status == "ok") {
             const Table st = readPostProcessing(dir, "stats");
@@ -564,22 +541,9 @@ void impact(Harness& h, const std::vector<Combination>& combos) {
                    "kineticEnergyEnd", "escaped", "minPairMin_dx", "note"});
     for (const auto& c : combos) {
         const std::string name = h.name(c);
-        std::cout << "  " << std::left << std::setw(60) << combinationLabel(c) << ' ' << std::flush;
-        const std::string missing = unavailableModel(c);
-        if (!missing.empty()) {
-            csv.row({name, combinationLabel(c), "unavailable", "", "", "", "", "", "", "", missing + " is not built"});
-            std::cout << "unavailable\n";
-            continue;
-        }
+        if (!h.available(c, csv)) continue;
         fs::path dir;
-        Outcome o;
-        try {
-            dir = h.prepare("impact", c, t);
-            o = h.run(dir);
-        } catch (const std::exception& e) {
-            o.status = "failed";
-            o.note = e.what();
-        }
+        const RunOutcome o = h.attempt("impact", c, t, dir);
         std::vector<std::string> row{name, combinationLabel(c), o.status, o.end.found ? csvNumber(o.end.wallSeconds, 4) : "",
                                      o.end.found ? std::to_string(o.end.steps) : ""};
         if (!dir.empty() && fs::exists(dir / "postProcessing/stats")) {
@@ -642,28 +606,10 @@ int main(int argc, char** argv) {
         ("keep", "keep the run directories under <output>/runs")
         ("noPlot", "do not draw the plots");
     po::variables_map vm;
-    try {
-        const auto style = po::command_line_style::unix_style | po::command_line_style::allow_long_disguise;
-        po::store(po::command_line_parser(argc, argv).options(options).style(style).run(), vm);
-        po::notify(vm);
-        if (vm.count("help")) {
-            std::cout << options << std::endl;
-            return 0;
-        }
-    } catch (const std::exception& e) {
-        std::cerr << "spindriftStress: " << e.what() << "\n" << options << std::endl;
-        return 2;
-    }
+    if (const auto status = parseCommandLine(argc, argv, options, "spindriftStress", vm)) return *status;
     try {
         log::setQuiet(true);
-        std::vector<VaryOption> vary;
-        if (vm.count("vary"))
-            for (const auto& v : vm["vary"].as<std::vector<std::string>>()) vary.push_back(parseVary(v));
-        auto combos = combinations(vary);
-        if (vm.count("combination")) {
-            if (vary.empty()) combos.clear();
-            for (const auto& text : vm["combination"].as<std::vector<std::string>>()) combos.push_back(parseCombination(text));
-        }
+        const auto combos = requestedCombinations(vm);
         Settings s;
         s.output = fs::absolute(vm["output"].as<std::string>());
         s.solver = executableDirectory() / "spindrift";
@@ -703,17 +649,8 @@ int main(int argc, char** argv) {
         if (tests.count("impact")) impact(h, combos);
         if (!s.keep) fs::remove_all(s.output / "runs");
 
-        if (!vm.count("noPlot")) {
-            const std::string python = findPython();
-            const fs::path script = findScript("spindriftStressPlot.py");
-            if (python.empty() || script.empty())
-                std::cerr << "spindriftStress: warning: no python3 with matplotlib (or no spindriftStressPlot.py): no plots\n";
-            else {
-                const auto pr = runProcess({python, script.string(), s.output.string()}, s.output, s.output / "log.plot", {}, 300);
-                if (pr.status == 0) std::cout << "\nPlots: " << (s.output / "stress_*.png").string() << std::endl;
-                else std::cerr << "spindriftStress: plotting failed, see " << (s.output / "log.plot").string() << '\n';
-            }
-        }
+        if (!vm.count("noPlot") && runPlotScript("spindriftStress", "spindriftStressPlot.py", {s.output.string()}, s.output, 300))
+            std::cout << "\nPlots: " << (s.output / "stress_*.png").string() << std::endl;
         std::cout << "Tables: " << (s.output / "stress_*.csv").string() << std::endl;
         return 0;
     } catch (const std::exception& e) {

@@ -6,150 +6,136 @@
   stress_jitter.png      minimum pair distance over time and the final radial distribution
   stress_impact.png      kinetic energy over its initial value and max density error over time
 
+One colour per combination, named in a legend under the panels.
+
     spindriftStressPlot.py <output directory>
 """
-import csv
 import os
 import sys
+import textwrap
 
-import matplotlib
+# etc/python/spindriftValidation.py: from $SPINDRIFT_DIR, the source tree or the installed share/spindrift
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path[1:1] = [os.path.join(d, "etc", "python") for d in (os.environ.get("SPINDRIFT_DIR"), os.path.join(here, "..", "..", ".."), here) if d]
+try:
+    import spindriftValidation as sv
+except ImportError as e:
+    sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+STATUS_COLOURS = {"ok": "C2", "atCap": "C1"}  # maxDeltaT bars; any other status has no bar
 
 
 def table(out, test):
-    path = os.path.join(out, "stress_%s.csv" % test)
-    if not os.path.exists(path):
-        return []
-    with open(path) as fh:
-        return list(csv.DictReader(fh))
+    return sv.read_csv(os.path.join(out, "stress_%s.csv" % test))
 
 
 def series(out, test, combo, name):
-    path = os.path.join(out, "series", test, "%s.%s.dat" % (combo, name))
-    if not os.path.exists(path):
-        return None, None
-    with open(path) as fh:
-        header = fh.readline().lstrip("#").split()
-    data = np.genfromtxt(path, comments="#", ndmin=2)
-    if data.size == 0:
-        return None, None
-    return header, data
+    return sv.read_table(os.path.join(out, "series", test, "%s.%s.dat" % (combo, name)))
 
 
-def label(row):
-    return row["combination"]
+def time_series_figure(out, test, title, panels, draw):
+    """One figure of 'panels' [(x label, y label, title)] side by side; draw(axes, row, colour,
+    label) plots one combination's series; one legend for all panels under them."""
+    rows = table(out, test)
+    if not rows:
+        return
+    plt = sv.pyplot()
+    fig, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4.2))
+    for j, r in enumerate(rows):
+        label = r["combination"] + ("" if r["status"] == "ok" else " (%s)" % r["status"])
+        draw(axes, r, "C%d" % (j % 10), label)
+        if label not in axes[0].get_legend_handles_labels()[1]:  # a run that wrote no series
+            axes[0].plot([], [], ls="none", label=label + ": no series")
+    for ax, (xlabel, ylabel, panel_title) in zip(axes, panels):
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_title(panel_title, fontsize=10)
+        ax.grid(alpha=0.3)
+    fig.suptitle(title)
+    fig.tight_layout()
+    sv.legend_below(fig, axes, ncol=2 if len(panels) < 3 else 3)
+    sv.save(fig, os.path.join(out, "stress_%s.png" % test), dpi=80)
 
 
 def still_water(out):
-    rows = table(out, "stillWater")
-    if not rows:
-        return
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
-    for j, r in enumerate(rows):
-        h, s = series(out, "stillWater", r["combination"], "stats")
-        if h is None:
-            continue
-        color = "C%d" % (j % 10)
-        axes[0].semilogy(s[:, 0], s[:, h.index("maxSpeed")], color=color, lw=1, label=label(r))
-        axes[1].plot(s[:, 0], 100 * s[:, h.index("rhoErrMax")], color=color, lw=1)
-        lh, lv = series(out, "stillWater", r["combination"], "level")
-        if lh is not None:
-            cols = [i for i, c in enumerate(lh) if c.startswith("level")]
-            axes[2].plot(lv[:, 0], lv[:, cols].mean(axis=1) - lv[0, cols].mean(), color=color, lw=1)
-    axes[0].set_title("max speed [m/s]")
-    axes[1].set_title("max density error [%]")
-    axes[2].set_title("free-surface level - initial [m] (mean of 3 gauges)")
-    for a in axes:
-        a.set_xlabel("t [s]")
-        a.grid(alpha=0.3)
-    axes[0].legend(fontsize=7)
-    fig.suptitle("(a) still water in a tank")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "stress_stillWater.png"), dpi=80)
-    plt.close(fig)
+    def draw(axes, r, colour, label):
+        s = series(out, "stillWater", r["combination"], "stats")
+        if s is None:
+            return
+        axes[0].semilogy(s.time, s["maxSpeed"], color=colour, lw=1, label=label)
+        axes[1].plot(s.time, 100 * s["rhoErrMax"], color=colour, lw=1)
+        level = series(out, "stillWater", r["combination"], "level")
+        if level is not None:
+            gauges = [i for i, c in enumerate(level.columns) if c.startswith("level")]
+            mean = level.data[:, gauges].mean(axis=1)
+            axes[2].plot(level.time, 1000 * (mean - mean[0]), color=colour, lw=1)
+
+    time_series_figure(out, "stillWater", "(a) still water in a tank",
+                       [("t [s]", "max particle speed [m/s]", "max speed"),
+                        ("t [s]", "max density error [%]", "max over the particles of $(\\rho - \\rho_0) / \\rho_0$"),
+                        ("t [s]", "level − initial level [mm]", "free-surface drift (mean of 3 gauges)")], draw)
 
 
 def max_delta_t(out):
     rows = table(out, "maxDeltaT")
     if not rows:
         return
-    fig, ax = plt.subplots(figsize=(max(6, 0.6 * len(rows) + 3), 5))
-    names = [label(r) for r in rows]
+    plt = sv.pyplot()
+    from matplotlib.patches import Patch
+    names = ["\n".join(textwrap.wrap(r["combination"].replace("_", " "), 36, break_on_hyphens=False)) for r in rows]
     values = [float(r["courantOnH"]) if r["courantOnH"] else 0.0 for r in rows]
-    colors = ["C2" if r["status"] == "ok" else "C1" if r["status"] == "atCap" else "C3" for r in rows]
-    ax.bar(range(len(rows)), values, color=colors)
+    fig, ax = plt.subplots(figsize=(9, 1.0 + 0.45 * sum(n.count("\n") + 1 for n in names)))
+    y = range(len(rows))
+    ax.barh(y, values, color=[STATUS_COLOURS.get(r["status"], "C3") for r in rows])
     for i, r in enumerate(rows):
-        if r["status"] not in ("ok", "atCap"):
-            ax.text(i, 0, r["status"], rotation=90, ha="center", va="bottom", fontsize=8)
+        if r["status"] not in STATUS_COLOURS:
+            ax.text(0, i, " " + r["status"], va="center", ha="left", fontsize=8, color="C3")
         elif r["status"] == "atCap":
-            ax.text(i, values[i], ">=", ha="center", va="bottom", fontsize=8)
-    ax.set_xticks(range(len(rows)))
-    ax.set_xticklabels(names, rotation=60, ha="right", fontsize=7)
-    ax.set_ylabel("largest stable fixed $\\Delta t$ [h / c$_0$]")
+            ax.text(values[i], i, " ≥", va="center", ha="left", fontsize=9)
+    ax.set_yticks(list(y))
+    ax.set_yticklabels(names, fontsize=8)
+    ax.invert_yaxis()
+    ax.margins(x=0.08)
+    ax.set_xlabel("largest stable fixed Δt [h / c$_0$] (h = kernel support radius, c$_0$ = sound speed)")
+    ax.set_ylabel("model combination (the models it changes)")
     ax.set_title("(b) largest stable time step (still-water tank)")
-    ax.grid(axis="y", alpha=0.3)
+    ax.grid(axis="x", alpha=0.3)
+    meaning = {"ok": "stable up to this step", "atCap": "stable at every step tried (≥)"}
+    sv.legend_beside(ax, handles=[Patch(color=STATUS_COLOURS[k], label=meaning[k]) for k in meaning
+                                  if any(r["status"] == k for r in rows)])
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "stress_maxDeltaT.png"), dpi=80)
-    plt.close(fig)
+    sv.save(fig, os.path.join(out, "stress_maxDeltaT.png"), dpi=80)
 
 
 def jitter(out):
-    rows = table(out, "jitter")
-    if not rows:
-        return
-    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
-    for j, r in enumerate(rows):
-        color = "C%d" % (j % 10)
-        h, s = series(out, "jitter", r["combination"], "stats")
-        if h is not None:
-            dx = s[0, h.index("minPairDistance")] / float(r["minPairStart_dx"]) if r["minPairStart_dx"] else 1
-            a.plot(s[:, 0], s[:, h.index("minPairDistance")] / dx, color=color, lw=1, label=label(r))
-        path = os.path.join(out, "series", "jitter", r["combination"] + ".rdf.dat")
-        if os.path.exists(path):
-            g = np.genfromtxt(path, comments="#", ndmin=2)
-            b.plot(g[:, 0], g[:, 1], color=color, lw=1)
-    a.set_xlabel("t [s]")
-    a.set_ylabel("min pair distance / dx")
-    a.set_title("clustering: closest pair")
-    a.legend(fontsize=7)
-    a.grid(alpha=0.3)
-    b.set_xlabel("r / dx")
-    b.set_ylabel("g(r)")
-    b.set_title("radial distribution at the end")
-    b.grid(alpha=0.3)
-    fig.suptitle("(c) jittered lattice at rest (periodic, no gravity)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "stress_jitter.png"), dpi=80)
-    plt.close(fig)
+    def draw(axes, r, colour, label):
+        s = series(out, "jitter", r["combination"], "stats")
+        if s is not None:
+            pair = s["minPairDistance"]
+            dx = pair[0] / float(r["minPairStart_dx"]) if r["minPairStart_dx"] else 1
+            axes[0].plot(s.time, pair / dx, color=colour, lw=1, label=label)
+        rdf = sv.read_table(os.path.join(out, "series", "jitter", r["combination"] + ".rdf.dat"))
+        if rdf is not None:
+            axes[1].plot(rdf.data[:, 0], rdf.data[:, 1], color=colour, lw=1)
+
+    time_series_figure(out, "jitter", "(c) jittered lattice at rest (periodic, no gravity)",
+                       [("t [s]", "closest pair distance / Δx [-]", "clustering: closest pair"),
+                        ("r / Δx [-]", "radial distribution g(r) [-]", "radial distribution at the end")], draw)
 
 
 def impact(out):
-    rows = table(out, "impact")
-    if not rows:
-        return
-    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
-    for j, r in enumerate(rows):
-        color = "C%d" % (j % 10)
-        h, s = series(out, "impact", r["combination"], "stats")
-        if h is None:
-            continue
-        ke = s[:, h.index("kineticEnergy")]
-        a.plot(s[:, 0], ke / ke[0], color=color, lw=1, label=label(r) + ("" if r["status"] == "ok" else " (" + r["status"] + ")"))
-        b.plot(s[:, 0], 100 * s[:, h.index("rhoErrMax")], color=color, lw=1)
-    a.set_xlabel("t [s]")
-    a.set_ylabel("kinetic energy / initial")
-    a.legend(fontsize=7)
-    a.grid(alpha=0.3)
-    b.set_xlabel("t [s]")
-    b.set_ylabel("max density error [%]")
-    b.grid(alpha=0.3)
-    fig.suptitle("(d) block thrown at a wall at 10 m/s")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "stress_impact.png"), dpi=80)
-    plt.close(fig)
+    def draw(axes, r, colour, label):
+        s = series(out, "impact", r["combination"], "stats")
+        if s is None:
+            return
+        ke = s["kineticEnergy"]
+        axes[0].plot(s.time, ke / ke[0], color=colour, lw=1, label=label)
+        axes[1].plot(s.time, 100 * s["rhoErrMax"], color=colour, lw=1)
+
+    time_series_figure(out, "impact", "(d) block thrown at a wall at 10 m/s",
+                       [("t [s]", "kinetic energy / initial [-]", "kinetic energy"),
+                        ("t [s]", "max density error [%]", "max over the particles of $(\\rho - \\rho_0) / \\rho_0$")],
+                       draw)
 
 
 def main():

@@ -14,95 +14,71 @@ Figures (time averages over the last quarter of the run, 'after settling'):
 H is the column's initial height (exact by mass conservation: rho0 g H is the weight per area).
 """
 import os
-import re
 import sys
 
 import numpy as np
 
-
-def read_dat(name, case="."):
-    """Rows of postProcessing/<name>/<t>/<name>.dat over every start-time folder, in time order."""
-    base = os.path.join(case, "postProcessing", name)
-    folders = sorted(os.listdir(base), key=float)
-    header, rows = None, []
-    for f in folders:
-        path = os.path.join(base, f, name + ".dat")
-        with open(path) as fh:
-            header = fh.readline().lstrip("#").split()
-        data = np.genfromtxt(path, comments="#", ndmin=2)
-        rows.append(data)
-    return header, np.vstack(rows)
-
-
-def dict_value(path, keyword):
-    text = re.sub(r"//.*", "", open(path).read())
-    m = re.search(r"\b" + keyword + r"\s+([^;]+);", text)
-    return m.group(1).strip() if m else None
-
-
-def vector(text):
-    return [float(v) for v in text.strip("() ").split()]
+# etc/python/spindriftValidation.py, from $SPINDRIFT_DIR (exported by etc/RunFunctions) or this tree
+sys.path[1:1] = [os.path.join(d, "etc", "python") for d in (os.environ.get("SPINDRIFT_DIR"), os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")) if d]
+try:
+    import spindriftValidation as sv
+except ImportError as e:
+    sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
 
 
 def main():
-    plot = "--no-plot" not in sys.argv and os.environ.get("SPINDRIFT_NO_PLOT", "0") != "1"
-    rho0 = float(dict_value("constant/fluidProperties", "rho0"))
-    g = abs(vector(dict_value("constant/fluidProperties", "gravity"))[1])
-    dx = float(dict_value("constant/fluidProperties", "particleSpacing"))
-    geometry = re.sub(r"//.*", "", open("constant/geometry").read())
-    fluid = geometry[geometry.index("fluid"):]
-    H = vector(re.search(r"max\s*(\([^)]*\))", fluid).group(1))[1]
+    props = sv.fluid_properties()
+    rho0, g, dx = props["rho0"], abs(props["gravity"][1]), props["particleSpacing"]
+    H = sv.geometry_box("fluid")[1][1]
 
-    header, p = read_dat("pressure")
-    t = p[:, 0]
-    pcols = [i for i, c in enumerate(header) if c.startswith("p(")]
-    z = np.array([float(header[i][2:-1].split(",")[1]) for i in pcols])
+    p = sv.read_dat("pressure")
+    t = p.time
+    pcols = [i for i, c in enumerate(p.columns) if c.startswith("p(")]
+    z = np.array([float(p.columns[i][2:-1].split(",")[1]) for i in pcols])
     end = t[-1]
     window = t >= 0.75 * end
-    pmean = p[window][:, pcols].mean(axis=0)
+    pmean = p.data[window][:, pcols].mean(axis=0)
     exact = rho0 * g * (H - z)
     rel = 100 * np.abs(pmean - exact) / exact
     bottom = int(np.argmin(z))
     mid = int(np.argmin(np.abs(z - H / 2)))
 
-    sh, stats = read_dat("stats")
-    speed = stats[:, sh.index("maxSpeed")]
-    lh, level = read_dat("level")
-    level_error = (level[level[:, 0] >= 0.75 * end][:, 1].mean() - H) / dx
+    stats = sv.read_dat("stats")
+    speed = stats["maxSpeed"]
+    level = sv.read_dat("level")
+    level_error = (level.data[level.time >= 0.75 * end][:, 1].mean() - H) / dx
 
     print("Figure: bottomPressureError = %.3f %% (probe z = %.4g m: %.1f Pa, exact %.1f Pa)"
           % (rel[bottom], z[bottom], pmean[bottom], exact[bottom]))
     print("Figure: midPressureError = %.3f %% (probe z = %.4g m: %.1f Pa, exact %.1f Pa)"
           % (rel[mid], z[mid], pmean[mid], exact[mid]))
-    print("Figure: maxSpeed = %.4g m/s (at t = %g s)" % (speed[-1], stats[-1, 0]))
+    print("Figure: maxSpeed = %.4g m/s (at t = %g s)" % (speed[-1], stats.time[-1]))
     print("Figure: levelError = %.3f particle spacings (surface %.4f m, H = %g m)"
-          % (level_error, level[-1, 1], H))
+          % (level_error, level.data[-1, 1], H))
 
-    if not plot:
+    if not sv.plot_requested():
         return
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4.2))
-    for k, i in enumerate([pcols[bottom], pcols[mid]]):
-        zz = z[[bottom, mid][k]]
-        a.plot(t, p[:, i], lw=1, label="SPH, z = %.3g m" % zz)
-        a.axhline(rho0 * g * (H - zz), ls="--", color="C%d" % k, lw=1, label="$\\rho_0 g (H - z)$, z = %.3g m" % zz)
-    a.axvspan(0.75 * end, end, color="0.9", zorder=-1)
+    plt = sv.pyplot()
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for k, probe in enumerate([bottom, mid]):
+        a.plot(t, p.data[:, pcols[probe]], lw=1, label="SPH, z = %.3g m" % z[probe])
+        a.axhline(exact[probe], ls="--", color="C%d" % k, lw=1, label="$\\rho_0 g (H - z)$, z = %.3g m" % z[probe])
+    a.axvspan(0.75 * end, end, color="0.9", zorder=-1, label="averaging window")
     a.set_xlabel("t [s]")
     a.set_ylabel("p [Pa]")
-    a.set_title("probe pressure (averaging window shaded)")
-    a.legend(fontsize=8)
+    a.set_title("probe pressure against hydrostatic", fontsize=10)
+    sv.legend_beside(a)
     zz = np.linspace(0, H, 50)
     b.plot(rho0 * g * (H - zz), zz, "k-", label="$\\rho_0 g (H - z)$")
     b.plot(pmean, z, "o", label="SPH probes (time average)")
     b.set_xlabel("p [Pa]")
     b.set_ylabel("z [m]")
-    b.set_title("bottom error %.2f %%, mid-depth %.2f %%" % (rel[bottom], rel[mid]))
-    b.legend(fontsize=8)
+    b.set_title("profile: bottom error %.2f %%, mid-depth %.2f %%" % (rel[bottom], rel[mid]), fontsize=10)
+    b.legend(loc="upper right", fontsize=8)
+    fig.suptitle("hydrostatic tank, H/dx = %.0f: pressure after settling" % (H / dx))
     fig.tight_layout()
-    fig.savefig("hydrostaticTank2D.png", dpi=90)
-    print("Plot: hydrostaticTank2D.png")
+    print("Plot: " + sv.save(fig, "hydrostaticTank2D.png"))
 
 
 if __name__ == "__main__":

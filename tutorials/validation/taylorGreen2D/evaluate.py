@@ -14,57 +14,23 @@ Figures:
   energyError     relative error of the kinetic energy against E0 e^{2bt} at the end
 """
 import os
-import re
 import sys
 
 import numpy as np
 
-
-def read_dat(name, case="."):
-    base = os.path.join(case, "postProcessing", name)
-    header, rows = None, []
-    for f in sorted(os.listdir(base), key=float):
-        path = os.path.join(base, f, name + ".dat")
-        with open(path) as fh:
-            header = fh.readline().lstrip("#").split()
-        rows.append(np.genfromtxt(path, comments="#", ndmin=2))
-    return header, np.vstack(rows)
-
-
-def read_vtp(path):
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-    reader = vtkXMLPolyDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    out = reader.GetOutput()
-    return vtk_to_numpy(out.GetPoints().GetData()), vtk_to_numpy(out.GetPointData().GetArray("velocity"))
-
-
-def times(case="."):
-    out = []
-    for d in os.listdir(case):
-        try:
-            t = float(d)
-        except ValueError:
-            continue
-        if os.path.exists(os.path.join(case, d, "fluid.vtp")):
-            out.append((t, d))
-    return sorted(out)
-
-
-def dict_value(path, keyword):
-    text = re.sub(r"//.*", "", open(path).read())
-    m = re.search(r"\b" + keyword + r"\s+([^;]+);", text)
-    return m.group(1).strip() if m else None
+# etc/python/spindriftValidation.py, from $SPINDRIFT_DIR (exported by etc/RunFunctions) or this tree
+sys.path[1:1] = [os.path.join(d, "etc", "python") for d in (os.environ.get("SPINDRIFT_DIR"), os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")) if d]
+try:
+    import spindriftValidation as sv
+except ImportError as e:
+    sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
 
 
 def main():
-    plot = "--no-plot" not in sys.argv and os.environ.get("SPINDRIFT_NO_PLOT", "0") != "1"
-    nu = float(dict_value("constant/fluidProperties", "viscosity"))
-    dx = float(dict_value("constant/fluidProperties", "particleSpacing"))
-    geometry = re.sub(r"//.*", "", open("constant/geometry").read())
-    lo, hi = [float(v) for v in re.search(r"\bx\s*\(([^)]*)\)", geometry[geometry.index("periodic"):]).group(1).split()]
+    props = sv.fluid_properties()
+    nu, dx = props["viscosity"], props["particleSpacing"]
+    lo, hi = sv.periodic_extent("x")
     L = hi - lo
     k = 2 * np.pi / L
     b = -8 * np.pi ** 2 * nu / L ** 2
@@ -73,18 +39,17 @@ def main():
         e = np.exp(b * t)
         return np.stack([-e * np.cos(k * x[:, 0]) * np.sin(k * x[:, 1]), e * np.sin(k * x[:, 0]) * np.cos(k * x[:, 1])], axis=1)
 
+    written = [(t, d) for t, d in sv.written_times() if t > 0]
+    if not written:
+        sys.exit("no time directory after t = 0")
     errors = []
-    for t, d in times():
-        if t <= 0:
-            continue
-        x, u = read_vtp(os.path.join(d, "fluid.vtp"))
+    for t, d in written:
+        x, u = sv.read_vtp(os.path.join(d, "fluid.vtp"))
         ue = exact(x, t)
         errors.append((t, np.sqrt(np.sum((u[:, :2] - ue) ** 2) / np.sum(ue ** 2))))
-    if not errors:
-        sys.exit("no time directory after t = 0")
     l2 = max(e for _, e in errors)
-    header, stats = read_dat("stats")
-    ts, speed, ke = stats[:, 0], stats[:, header.index("maxSpeed")], stats[:, header.index("kineticEnergy")]
+    stats = sv.read_dat("stats")
+    ts, speed, ke = stats.time, stats["maxSpeed"], stats["kineticEnergy"]
     i1 = int(np.argmin(np.abs(ts - 1.0)))
     speed_error = (speed[i1] - np.exp(b * ts[i1])) / np.exp(b * ts[i1])
     energy_error = (ke[-1] / ke[0] - np.exp(2 * b * ts[-1])) / np.exp(2 * b * ts[-1])
@@ -97,32 +62,33 @@ def main():
     print("Figure: energyError = %.4f (E/E0 = %.4f at t = %.3g, exact %.4f)"
           % (energy_error, ke[-1] / ke[0], ts[-1], np.exp(2 * b * ts[-1])))
 
-    if not plot:
+    if not sv.plot_requested():
         return
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a, c) = plt.subplots(1, 2, figsize=(11, 4.5))
+    plt = sv.pyplot()
+    fig, (a, c) = plt.subplots(1, 2, figsize=(12, 4.8))
     tt = np.linspace(0, ts[-1], 200)
     a.semilogy(tt, np.exp(b * tt), "k-", lw=1, label="exact $U e^{bt}$")
     a.semilogy(ts, speed, "C0o", ms=3, label="SPH max speed")
     a.semilogy(tt, np.exp(2 * b * tt), "k--", lw=1, label="exact $E/E_0 = e^{2bt}$")
     a.semilogy(ts, ke / ke[0], "C1s", ms=3, label="SPH $E/E_0$")
-    a.set_xlabel("t")
-    a.set_title("decay (Re = %.0f, L/dx = %.0f)" % (L / nu, L / dx), fontsize=10)
-    a.legend(fontsize=8)
+    a.set_xlabel("t [s]")
+    a.set_ylabel("max speed / U, kinetic energy / $E_0$ [-]")
+    a.set_title("decay against the exact solution (U = 1 m/s, Re = %.0f, L/dx = %.0f)" % (L / nu, L / dx), fontsize=10)
+    a.legend(loc="lower left", fontsize=8)
     a.grid(alpha=0.3, which="both")
-    t_last, d_last = times()[-1]
-    x, u = read_vtp(os.path.join(d_last, "fluid.vtp"))
+    t_last, d_last = written[-1]
+    x, u = sv.read_vtp(os.path.join(d_last, "fluid.vtp"))
     s = np.sqrt(u[:, 0] ** 2 + u[:, 1] ** 2)
     sc = c.scatter(x[:, 0], x[:, 1], c=s, s=5, cmap="viridis", rasterized=True)
     c.quiver(x[::3, 0], x[::3, 1], u[::3, 0], u[::3, 1], scale=12 * np.exp(b * t_last), width=0.003)
     c.set_aspect("equal")
-    c.set_title("particles at t = %g (speed); L2 error %.3f" % (t_last, errors[-1][1]), fontsize=10)
-    fig.colorbar(sc, ax=c)
+    c.set_xlabel("x [m]")
+    c.set_ylabel("y [m]")
+    c.set_title("particles at t = %g s (colour: speed, arrows: velocity); L2 error %.3f" % (t_last, errors[-1][1]),
+                fontsize=10)
+    fig.colorbar(sc, ax=c, label="particle speed |u| [m/s]")
     fig.tight_layout()
-    fig.savefig("taylorGreen2D.png", dpi=72)
-    print("Plot: taylorGreen2D.png")
+    print("Plot: " + sv.save(fig, "taylorGreen2D.png"))
 
 
 if __name__ == "__main__":

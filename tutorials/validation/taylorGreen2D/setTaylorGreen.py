@@ -9,20 +9,23 @@ pvpython (or a python3 with the vtk module).
 import os
 import sys
 
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
 import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+# etc/python/spindriftValidation.py, from $SPINDRIFT_DIR (exported by etc/RunFunctions) or this tree
+sys.path[1:1] = [os.path.join(d, "etc", "python") for d in (os.environ.get("SPINDRIFT_DIR"), os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")) if d]
+try:
+    import spindriftValidation as sv
+except ImportError as e:
+    sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
 
 
 def main():
     U = float(sys.argv[1]) if len(sys.argv) > 1 else 1.0
-    times = sorted((float(d), d) for d in os.listdir(".") if d.replace(".", "").isdigit()
-                   and os.path.exists(os.path.join(d, "fluid.vtp")))
-    path = os.path.join(times[-1][1], "fluid.vtp")
-    reader = vtkXMLPolyDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    data = reader.GetOutput()
+    path = os.path.join(sv.written_times()[-1][1], "fluid.vtp")
+    data = sv.read_polydata(path)
     x = vtk_to_numpy(data.GetPoints().GetData())
     dx = np.diff(np.unique(np.round(x[:, 0], 12))).min()
     L = x[:, 0].max() - x[:, 0].min() + dx  # the lattice's extent + one spacing
