@@ -43,4 +43,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(BoundaryModel, "boundary", "akinci", Akinci)
+SPINDRIFT_PLUGIN(BoundaryModel, Akinci)

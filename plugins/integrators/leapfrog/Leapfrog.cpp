@@ -38,4 +38,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "leapfrog", Leapfrog)
+SPINDRIFT_PLUGIN(Integrator, Leapfrog)

@@ -90,4 +90,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "pereaCordero", PereaCordero)
+SPINDRIFT_PLUGIN(Integrator, PereaCordero)

@@ -24,4 +24,4 @@ public:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "symplecticEuler", SymplecticEuler)
+SPINDRIFT_PLUGIN(Integrator, SymplecticEuler)

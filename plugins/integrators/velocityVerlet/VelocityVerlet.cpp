@@ -47,4 +47,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "velocityVerlet", VelocityVerlet)
+SPINDRIFT_PLUGIN(Integrator, VelocityVerlet)

@@ -52,4 +52,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "pbf", Pbf)
+SPINDRIFT_PLUGIN(PressureModel, Pbf)

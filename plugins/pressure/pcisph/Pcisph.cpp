@@ -154,4 +154,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "pcisph", Pcisph)
+SPINDRIFT_PLUGIN(PressureModel, Pcisph)

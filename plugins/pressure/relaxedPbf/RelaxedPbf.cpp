@@ -56,4 +56,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "relaxedPbf", RelaxedPbf)
+SPINDRIFT_PLUGIN(PressureModel, RelaxedPbf)

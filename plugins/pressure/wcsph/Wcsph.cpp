@@ -38,4 +38,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "wcsph", Wcsph)
+SPINDRIFT_PLUGIN(PressureModel, Wcsph)

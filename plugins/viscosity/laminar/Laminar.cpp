@@ -56,4 +56,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "laminar", Laminar)
+SPINDRIFT_PLUGIN(ViscosityModel, Laminar)

@@ -105,4 +105,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "pereaCordero", PereaCordero)
+SPINDRIFT_PLUGIN(ViscosityModel, PereaCordero)

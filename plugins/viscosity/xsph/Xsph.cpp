@@ -56,4 +56,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "xsph", Xsph)
+SPINDRIFT_PLUGIN(ViscosityModel, Xsph)
