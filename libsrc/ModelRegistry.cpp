@@ -5,6 +5,7 @@
 #include <boost/dll/shared_library.hpp>
 #include <algorithm>
 #include <cstdlib>
+#include <dlfcn.h>
 #include <set>
 #include <sstream>
 
@@ -32,6 +33,19 @@ ModelRegistry& ModelRegistry::instance() {
     return *registry;
 }
 
+namespace {
+
+// The file this code was loaded from (libspindrift.so), "" if unknown. The address is that of a
+// function no other library can interpose.
+fs::path thisLibrary() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<const void*>(&thisLibrary), &info) != 0 && info.dli_fname != nullptr)
+        return info.dli_fname;
+    return {};
+}
+
+} // namespace
+
 ModelRegistry::ModelRegistry() {
     std::vector<fs::path> dirs;
     if (const char* env = std::getenv("SPINDRIFT_PLUGIN_PATH")) {
@@ -40,11 +54,13 @@ ModelRegistry::ModelRegistry() {
         while (std::getline(s, dir, ':'))
             if (!dir.empty()) dirs.emplace_back(dir);
     }
+    // The plugins beside this library (lib/spindrift/plugins next to lib/libspindrift.so) in
+    // the build tree and in any installation, wherever its prefix.
+    if (const fs::path core = thisLibrary(); !core.empty())
+        dirs.push_back(fs::absolute(core).parent_path() / "spindrift" / "plugins");
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) dirs.push_back(exe.parent_path().parent_path() / "lib" / "spindrift" / "plugins");
-    dirs.emplace_back(SPINDRIFT_PLUGIN_BUILD_DIR);
-    dirs.emplace_back(SPINDRIFT_PLUGIN_INSTALL_DIR);
     for (auto& d : dirs) {
         const fs::path canonical = fs::weakly_canonical(d, ec);
         const fs::path& use = ec ? d : canonical;

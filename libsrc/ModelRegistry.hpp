@@ -1,13 +1,14 @@
 // Spindrift — run-time selection of models from plugin libraries (Boost.DLL).
 //
 // A model of kind K named N lives in libspindrift_<K>_<N>.so, found on the plugin path:
-// $SPINDRIFT_PLUGIN_PATH (colon-separated), <executable>/../lib/spindrift/plugins, the build
-// tree and the install prefix. Only the libraries a case names are opened; listing the valid
-// types reads file names, it opens nothing. User plugins named in controlDict `libs (...)` are
-// opened explicitly and register the kind and name they export. Before anything in a library
-// is used, its ABI tag (interface version and precision, Types.hpp) must equal the core's, and a
-// library found by file name must export that kind and name; otherwise it is refused with a
-// message naming the file. Libraries stay loaded until exit.
+// $SPINDRIFT_PLUGIN_PATH (colon-separated), then <dir of libspindrift.so>/spindrift/plugins (the
+// build tree's or the installation's, wherever it was installed) and
+// <executable>/../lib/spindrift/plugins. Only the libraries a case names are opened; listing the
+// valid types reads file names, it opens nothing. User plugins named in controlDict `libs (...)`
+// are opened explicitly and register the kind and name they export. Before anything in a
+// library is used, its ABI tag (interface version and precision, Types.hpp) must equal the
+// core's, and a library found by file name must export that kind and name; otherwise it is
+// refused with a message naming the file. Libraries stay loaded until exit.
 #pragma once
 
 #include "BoundaryModel.hpp"
