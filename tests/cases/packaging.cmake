@@ -1,5 +1,9 @@
-# Packaging: the bash completion.
+# Packaging: the installed development package used out of tree (templates, find_package) and
+# the bash completion.
+add_test(NAME Package.InstalledSolverRunsAnOutOfTreeTemplatePlugin
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/devPackage.sh ${CMAKE_BINARY_DIR})
 add_test(NAME Package.BashCompletion
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/bashCompletion.sh $<TARGET_FILE:spindriftSolver>
           ${PROJECT_SOURCE_DIR}/etc/bash-completion/spindrift)
-set_tests_properties(Package.BashCompletion PROPERTIES LABELS package TIMEOUT 600)
+set_tests_properties(Package.InstalledSolverRunsAnOutOfTreeTemplatePlugin Package.BashCompletion
+  PROPERTIES ENVIRONMENT "OMP_NUM_THREADS=1" LABELS package TIMEOUT 600)
