@@ -30,7 +30,23 @@ enum class ResultKind { acceleration, velocityChange, positionChange };
 // The factory every plugin exports (see Plugin.hpp).
 template <class Base> using Factory = std::unique_ptr<Base>(const ModelContext&);
 
-// Kind names as used in plugin file names, dictionaries and messages (ModelRegistry.hpp).
+// The kind of model each interface is, as used in plugin file names (libspindrift_<kind>_<name>.so),
+// dictionaries and messages. A plugin exports the kind of the base class its factory returns
+// (Plugin.hpp), so the ModelRegistry can check it before calling the factory as that type.
 template <class Base> struct KindName;
+class Kernel;
+class PressureModel;
+class ViscosityModel;
+class Integrator;
+class BoundaryModel;
+class ExtraForce;
+class FunctionObject;
+template <> struct KindName<Kernel> { static constexpr const char* value = "kernel"; };
+template <> struct KindName<PressureModel> { static constexpr const char* value = "pressure"; };
+template <> struct KindName<ViscosityModel> { static constexpr const char* value = "viscosity"; };
+template <> struct KindName<Integrator> { static constexpr const char* value = "integrator"; };
+template <> struct KindName<BoundaryModel> { static constexpr const char* value = "boundary"; };
+template <> struct KindName<ExtraForce> { static constexpr const char* value = "force"; };
+template <> struct KindName<FunctionObject> { static constexpr const char* value = "functionObject"; };
 
 } // namespace spindrift

@@ -1,11 +1,14 @@
 // Spindrift — run-time selection of models from plugin libraries (Boost.DLL).
 //
 // A model of kind K named N lives in libspindrift_<K>_<N>.so, found on the plugin path:
-// $SPINDRIFT_PLUGIN_PATH (colon-separated), <executable>/../lib/spindrift/plugins, the build
-// tree and the install prefix. Only the libraries a case names are opened; listing the valid
-// types reads file names, it opens nothing. User plugins named in controlDict `libs (...)` are
-// opened explicitly and register the kind and name they export. A library whose ABI version
-// differs from the core's is refused with a message. Libraries stay loaded until exit.
+// $SPINDRIFT_PLUGIN_PATH (colon-separated), then <dir of libspindrift.so>/spindrift/plugins (the
+// build tree's or the installation's, wherever it was installed) and
+// <executable>/../lib/spindrift/plugins. Only the libraries a case names are opened; listing the
+// valid types reads file names, it opens nothing. User plugins named in controlDict `libs (...)`
+// are opened explicitly and register the kind and name they export. Before anything in a
+// library is used, its ABI tag (interface version and precision, Types.hpp) must equal the
+// core's, and a library found by file name must export that kind and name; otherwise it is
+// refused with a message naming the file. Libraries stay loaded until exit.
 #pragma once
 
 #include "BoundaryModel.hpp"
@@ -22,14 +25,6 @@
 #include <vector>
 
 namespace spindrift {
-
-template <> struct KindName<Kernel> { static constexpr const char* value = "kernel"; };
-template <> struct KindName<PressureModel> { static constexpr const char* value = "pressure"; };
-template <> struct KindName<ViscosityModel> { static constexpr const char* value = "viscosity"; };
-template <> struct KindName<Integrator> { static constexpr const char* value = "integrator"; };
-template <> struct KindName<BoundaryModel> { static constexpr const char* value = "boundary"; };
-template <> struct KindName<ExtraForce> { static constexpr const char* value = "force"; };
-template <> struct KindName<FunctionObject> { static constexpr const char* value = "functionObject"; };
 
 class ModelRegistry {
 public:
@@ -59,6 +54,8 @@ public:
                                  const std::filesystem::path& caseDirectory = {}, const std::string& name = {}) {
         const std::string kind = KindName<Base>::value;
         const std::string type = typeOf(kind, dict);
+        // factoryFor returns only the factory of a library exporting this kind, and a plugin's
+        // exported kind is that of its factory's base class (Plugin.hpp): it is a Factory<Base>.
         auto factory = reinterpret_cast<Factory<Base>*>(factoryFor(kind, type, dict));
         ModelContext context{dict, physics, solution, caseDirectory, name};
         auto model = factory(context);
@@ -72,14 +69,20 @@ public:
 private:
     ModelRegistry();
     std::string typeOf(const std::string& kind, const Dictionary& dict) const;
+    // The address of the factory of the `kind` model `type`, from a library that exports that
+    // kind and name (opened now if needed); InputError at dict's `type` otherwise.
     void* factoryFor(const std::string& kind, const std::string& type, const Dictionary& dict);
     struct Library;
     struct Loaded {
         std::string kind, name;
         std::filesystem::path file;
         std::shared_ptr<Library> library;
+        void* factory = nullptr; // spindrift_create: a Factory<Base> for the Base of `kind`
     };
-    Loaded open(const std::filesystem::path& file, const SourceLocation& where);
+    // Loads 'file' and checks that it is a plugin of this core's ABI and of a known kind (not
+    // registered yet). Errors name 'where'.
+    Loaded open(const std::filesystem::path& file, const SourceLocation& where) const;
+    void add(const Loaded& library);
 
     std::vector<std::filesystem::path> searchPath_;
     std::vector<Loaded> loaded_;

@@ -16,8 +16,17 @@ using Scalar = double;
 using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
 using Index = std::uint32_t;
 
-// Bumped whenever a header a plugin compiles against changes its layout or virtual interface.
-// A plugin built against another version is refused at load time (never called).
-inline constexpr std::uint32_t pluginAbiVersion = 1;
+// Bumped whenever a header a plugin compiles against changes its layout or virtual interface
+// (2: the plugin's kind from its base class, the ABI tag below).
+inline constexpr std::uint32_t pluginInterfaceVersion = 2;
+
+// What a plugin must share with the core to be called: exported by every plugin (Plugin.hpp)
+// and compared by the ModelRegistry before anything in the library is used. A plugin built for
+// another interface or another precision (-DSPINDRIFT_PRECISION=float) is refused with a message.
+struct PluginAbiTag {
+    std::uint32_t interfaceVersion;
+    std::uint32_t scalarBytes; // sizeof(Scalar): 4 single precision, 8 double
+};
+inline constexpr PluginAbiTag pluginAbiTag{pluginInterfaceVersion, sizeof(Scalar)};
 
 } // namespace spindrift

@@ -101,3 +101,85 @@ TEST(ModelRegistry, UserLibraryRegistersItsModel) {
 }
 
 } // namespace
+
+namespace {
+
+std::string precisionOf(bool single) {
+    return single ? "single precision (Scalar = float)" : "double precision (Scalar = double)";
+}
+
+// The message a plugin built for the other precision gets, at 'file' (path as loaded).
+std::string otherPrecisionMessage(const std::string& file) {
+    const std::string interface = "interface " + std::to_string(pluginInterfaceVersion);
+    return "plugin '" + file + "' was built for " + precisionOf(!test::singlePrecision) + ", " + interface +
+           "; this spindrift is " + precisionOf(test::singlePrecision) + ", " + interface +
+           ": rebuild the plugin against this installation";
+}
+
+std::string messageOfLoading(const std::filesystem::path& file) {
+    try {
+        ModelRegistry::instance().loadUserLibrary(file.string(), ".", {"controlDict", 7, 1});
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(ModelRegistry, PluginBuiltForTheOtherPrecisionIsRefusedWithBothPrecisions) {
+    const auto file = std::filesystem::path(SPINDRIFT_TEST_PLUGIN_DIR) / "libspindriftTestOtherPrecision.so";
+    const std::string m = messageOfLoading(file);
+    EXPECT_NE(m.find(otherPrecisionMessage(file.string())), std::string::npos) << m;
+    EXPECT_NE(m.find("controlDict:7:1"), std::string::npos) << m;
+    EXPECT_TRUE(ModelRegistry::instance().loadedLibraries().empty());
+}
+
+TEST(ModelRegistry, PluginOfTheOtherPrecisionThatCannotBeBoundIsRefusedWithItsPrecision) {
+    // Its constructor calls Dictionary::getOrDefault<Vec3> of the other precision, which this
+    // core lacks: loading with every symbol bound fails; the message still says why.
+    const auto file = std::filesystem::path(SPINDRIFT_TEST_PLUGIN_DIR) / "libspindriftTestOtherPrecisionCallsCore.so";
+    const std::string m = messageOfLoading(file);
+    EXPECT_NE(m.find(otherPrecisionMessage(file.string())), std::string::npos) << m;
+    EXPECT_TRUE(ModelRegistry::instance().loadedLibraries().empty());
+}
+
+TEST(ModelRegistry, PluginOfAnotherInterfaceIsRefused) {
+    const auto file = std::filesystem::path(SPINDRIFT_TEST_PLUGIN_DIR) / "libspindriftTestWrongAbi.so";
+    const std::string m = messageOfLoading(file);
+    EXPECT_NE(m.find("plugin '" + file.string() + "' was built for " + precisionOf(test::singlePrecision) +
+                     ", interface 999; this spindrift is " + precisionOf(test::singlePrecision) + ", interface " +
+                     std::to_string(pluginInterfaceVersion) + ": rebuild the plugin against this installation"),
+              std::string::npos)
+        << m;
+}
+
+TEST(ModelRegistry, PluginFileOfAnotherKindIsRefusedBeforeItsFactoryIsCalled) {
+    // libspindrift_pressure_mislabelled.so holds a kernel: calling its factory as a
+    // PressureModel's would be undefined behaviour.
+    ModelRegistry::instance().prependSearchDirectory(SPINDRIFT_TEST_PLUGIN_DIR);
+    try {
+        test::createModel<PressureModel>("type mislabelled;", test::physicsFor(2));
+        FAIL() << "expected an error";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("plugin '" + (std::filesystem::path(SPINDRIFT_TEST_PLUGIN_DIR) /
+                                       "libspindrift_pressure_mislabelled.so").string() +
+                         "' is the kernel 'mislabelled', not the pressure 'mislabelled' its file name says"),
+                  std::string::npos)
+            << m;
+        EXPECT_NE(m.find("test:1:"), std::string::npos) << "names the type entry: " << m;
+    }
+    EXPECT_TRUE(ModelRegistry::instance().loadedLibraries().empty()) << "refused, not registered";
+}
+
+TEST(ModelRegistry, PluginsCarryTheKindOfTheirBaseClassAndTheNameOfTheirCMakeCall) {
+    // every in-tree plugin: file name, exported kind and name agree (else factoryFor refuses)
+    auto k = test::createModel<Kernel>("type cubicSpline;", test::physicsFor(2));
+    auto p = test::createModel<PressureModel>("type wcsph; soundSpeed 20;", test::physicsFor(2));
+    auto f = test::createModel<ExtraForce>("type vorticityConfinement; epsilon 0.1;", test::physicsFor(2));
+    EXPECT_NE(k, nullptr);
+    EXPECT_NE(p, nullptr);
+    EXPECT_NE(f, nullptr);
+    EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), 3u);
+}
+
+} // namespace

@@ -72,4 +72,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(BoundaryModel, "boundary", "akinci", Akinci)
+SPINDRIFT_PLUGIN(BoundaryModel, Akinci)

@@ -78,4 +78,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ExtraForce, "force", "vorticityConfinement", VorticityConfinement)
+SPINDRIFT_PLUGIN(ExtraForce, VorticityConfinement)

@@ -114,4 +114,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(FunctionObject, "functionObject", "fieldStats", FieldStats)
+SPINDRIFT_PLUGIN(FunctionObject, FieldStats)

@@ -121,4 +121,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(FunctionObject, "functionObject", "probes", Probes)
+SPINDRIFT_PLUGIN(FunctionObject, Probes)

@@ -71,4 +71,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(FunctionObject, "functionObject", "solverPerformance", SolverPerformance)
+SPINDRIFT_PLUGIN(FunctionObject, SolverPerformance)

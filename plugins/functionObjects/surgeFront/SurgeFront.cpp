@@ -93,4 +93,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(FunctionObject, "functionObject", "surgeFront", SurgeFront)
+SPINDRIFT_PLUGIN(FunctionObject, SurgeFront)

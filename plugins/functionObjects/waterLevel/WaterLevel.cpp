@@ -101,4 +101,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(FunctionObject, "functionObject", "waterLevel", WaterLevel)
+SPINDRIFT_PLUGIN(FunctionObject, WaterLevel)

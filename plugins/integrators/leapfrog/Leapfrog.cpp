@@ -28,4 +28,4 @@ public:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "leapfrog", Leapfrog)
+SPINDRIFT_PLUGIN(Integrator, Leapfrog)

@@ -83,4 +83,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "pereaCordero", PereaCordero)
+SPINDRIFT_PLUGIN(Integrator, PereaCordero)

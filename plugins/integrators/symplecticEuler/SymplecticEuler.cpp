@@ -27,4 +27,4 @@ public:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "symplecticEuler", SymplecticEuler)
+SPINDRIFT_PLUGIN(Integrator, SymplecticEuler)

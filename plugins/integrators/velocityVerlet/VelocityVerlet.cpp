@@ -38,4 +38,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Integrator, "integrator", "velocityVerlet", VelocityVerlet)
+SPINDRIFT_PLUGIN(Integrator, VelocityVerlet)

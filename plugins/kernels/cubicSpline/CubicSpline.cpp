@@ -41,4 +41,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Kernel, "kernel", "cubicSpline", CubicSpline)
+SPINDRIFT_PLUGIN(Kernel, CubicSpline)

@@ -32,4 +32,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Kernel, "kernel", "poly6Spiky", Poly6Spiky)
+SPINDRIFT_PLUGIN(Kernel, Poly6Spiky)

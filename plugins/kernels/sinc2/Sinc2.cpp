@@ -80,4 +80,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Kernel, "kernel", "sinc2", Sinc2)
+SPINDRIFT_PLUGIN(Kernel, Sinc2)

@@ -41,4 +41,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(Kernel, "kernel", "wendlandC2", WendlandC2)
+SPINDRIFT_PLUGIN(Kernel, WendlandC2)

@@ -368,4 +368,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "dfsph", Dfsph)
+SPINDRIFT_PLUGIN(PressureModel, Dfsph)

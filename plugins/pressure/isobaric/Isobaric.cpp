@@ -149,4 +149,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "isobaric", Isobaric)
+SPINDRIFT_PLUGIN(PressureModel, Isobaric)

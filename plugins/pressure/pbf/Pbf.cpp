@@ -32,4 +32,4 @@ public:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "pbf", Pbf)
+SPINDRIFT_PLUGIN(PressureModel, Pbf)

@@ -144,4 +144,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "pcisph", Pcisph)
+SPINDRIFT_PLUGIN(PressureModel, Pcisph)

@@ -36,4 +36,4 @@ public:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "relaxedPbf", RelaxedPbf)
+SPINDRIFT_PLUGIN(PressureModel, RelaxedPbf)

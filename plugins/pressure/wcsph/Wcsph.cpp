@@ -29,4 +29,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(PressureModel, "pressure", "wcsph", Wcsph)
+SPINDRIFT_PLUGIN(PressureModel, Wcsph)

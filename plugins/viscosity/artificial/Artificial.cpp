@@ -72,4 +72,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "artificial", Artificial)
+SPINDRIFT_PLUGIN(ViscosityModel, Artificial)

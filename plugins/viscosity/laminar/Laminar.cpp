@@ -62,4 +62,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "laminar", Laminar)
+SPINDRIFT_PLUGIN(ViscosityModel, Laminar)

@@ -106,4 +106,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "pereaCordero", PereaCordero)
+SPINDRIFT_PLUGIN(ViscosityModel, PereaCordero)

@@ -62,4 +62,4 @@ private:
 };
 } // namespace
 
-SPINDRIFT_PLUGIN(ViscosityModel, "viscosity", "xsph", Xsph)
+SPINDRIFT_PLUGIN(ViscosityModel, Xsph)

@@ -1,0 +1,25 @@
+// Template boundary plugin: every wall particle weighs as a fluid particle (walls sampled on the
+// fluid lattice) and mirrors the pressure of the fluid particle it meets.
+//   sphSchemes:  boundary { type <this folder's name>; }
+#include "BoundaryModel.hpp"
+#include "Plugin.hpp"
+
+#include <algorithm>
+
+namespace {
+using namespace spindrift;
+
+class TemplateBoundary final : public BoundaryModel {
+public:
+    explicit TemplateBoundary(const ModelContext&) {}
+
+    void initialise(SphSystem& s) override {
+        auto& mass = s.boundary.addScalar("boundaryMass");
+        std::fill(mass.begin(), mass.end(), s.fluid.particleMass());
+        s.boundaryMass = &mass;
+        s.boundaryPressureMirrored = true;
+    }
+};
+} // namespace
+
+SPINDRIFT_PLUGIN(BoundaryModel, TemplateBoundary)

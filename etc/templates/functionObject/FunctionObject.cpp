@@ -1,0 +1,33 @@
+// Template function object plugin: the largest fluid speed after every step, written to
+// postProcessing/<name>/<startTime>/<name>.dat.
+//   controlDict:  functions { speed { type <this folder's name>; } }
+#include "FunctionObject.hpp"
+#include "Plugin.hpp"
+
+#include <algorithm>
+
+namespace {
+using namespace spindrift;
+
+class TemplateFunctionObject final : public FunctionObject {
+public:
+    explicit TemplateFunctionObject(const ModelContext& c) : caseDir_(c.caseDirectory), name_(c.name) {}
+
+    void start(const SphSystem&, double startTime) override {
+        file_ = PostProcessingFile(caseDir_, name_, startTime, {"maxSpeed"});
+    }
+
+    void execute(const SphSystem& s, bool) override {
+        Scalar maxSpeed = 0;
+        for (const auto& v : s.fluid.velocity()) maxSpeed = std::max(maxSpeed, v.norm());
+        file_.writeRow(s.time, {double(maxSpeed)});
+    }
+
+private:
+    std::filesystem::path caseDir_;
+    std::string name_;
+    PostProcessingFile file_;
+};
+} // namespace
+
+SPINDRIFT_PLUGIN(FunctionObject, TemplateFunctionObject)
