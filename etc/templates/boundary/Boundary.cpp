@@ -13,11 +13,13 @@ class TemplateBoundary final : public BoundaryModel {
 public:
     explicit TemplateBoundary(const ModelContext&) {}
 
-    void initialise(SphSystem& s) override {
-        auto& mass = s.boundary.addScalar("boundaryMass");
-        std::fill(mass.begin(), mass.end(), s.fluid.particleMass());
-        s.boundaryMass = &mass;
-        s.boundaryPressureMirrored = true;
+    void initialise(Scene& s) override {
+        for (WallSystem& w : s.walls) { // one wall system per constant/geometry walls entry
+            auto& mass = w.particles.addScalar("wallMass");
+            std::fill(mass.begin(), mass.end(), s.fluid.particleMass());
+            w.mass = &mass;
+            w.pressureMirrored = true;
+        }
     }
 };
 } // namespace

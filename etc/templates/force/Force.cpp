@@ -10,7 +10,7 @@ class TemplateForce final : public ExtraForce {
 public:
     explicit TemplateForce(const ModelContext& c) : acceleration_(c.dict.get<Vec3>("acceleration")) {}
 
-    void addAcceleration(SphSystem& s, Scalar) override {
+    void addAcceleration(Scene& s, Scalar) override {
         for (auto& a : s.fluid.acceleration()) a += acceleration_;
     }
 

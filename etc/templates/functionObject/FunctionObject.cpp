@@ -13,11 +13,11 @@ class TemplateFunctionObject final : public FunctionObject {
 public:
     explicit TemplateFunctionObject(const ModelContext& c) : caseDir_(c.caseDirectory), name_(c.name) {}
 
-    void start(const SphSystem&, double startTime) override {
+    void start(const Scene&, double startTime) override {
         file_ = PostProcessingFile(caseDir_, name_, startTime, {"maxSpeed"});
     }
 
-    void execute(const SphSystem& s, bool) override {
+    void execute(const Scene& s, bool) override {
         Scalar maxSpeed = 0;
         for (const auto& v : s.fluid.velocity()) maxSpeed = std::max(maxSpeed, v.norm());
         file_.writeRow(s.time, {double(maxSpeed)});

@@ -1,31 +1,45 @@
-// Template viscosity plugin: XSPH velocity smoothing among fluid particles,
-// Δv_i = c Σ_j (2 m / (ρ_i + ρ_j)) (v_j − v_i) W_ij, returned as the acceleration Δv_i/Δt.
+// Template viscosity plugin: XSPH velocity smoothing, a pair term on the core's pair loop
+// (libsrc/PairLoop.hpp), which visits every fluid neighbour j and every wall particle b of each
+// fluid particle i in the balanced parallel schedule:
+//   Δv_i = c [Σ_j (2 m / (ρ_i + ρ_j)) (v_j − v_i) W_ij + Σ_b (M_b / ρ_i) (v_b − v_i) W_ib],
+// a change of velocity, added as the acceleration Δv_i/Δt (ResultKind::velocityChange: the core
+// accepts it with the symplecticEuler integrator).
 //   sphSchemes:  viscosity { type <this folder's name>; c 0.01; }
+#include "PairLoop.hpp"
 #include "Plugin.hpp"
-#include "SphOperators.hpp"
 #include "ViscosityModel.hpp"
 
 namespace {
 using namespace spindrift;
 
+struct SmoothingTerm {
+    using Sum = Vec3;
+    struct Particle { Vec3 v; Scalar rho; };
+    const KernelTable& kt;
+    const Vec3* v;
+    const Scalar* rho;
+    Scalar m;
+    Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
+    void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
+        sum += (2 * m * kt.WSq(q.r2) / (pi.rho + rho[q.j])) * (v[q.j] - pi.v);
+    }
+    void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
+        sum += (q.mass() * kt.WSq(q.r2) / pi.rho) * (q.wall.vViscous[q.j] - pi.v);
+    }
+};
+
 class TemplateViscosity final : public ViscosityModel {
 public:
     explicit TemplateViscosity(const ModelContext& c) : c_(c.dict.getOrDefault<Scalar>("c", 0.01)) {}
 
-    void addAcceleration(SphSystem& s, Scalar dt) override {
+    ResultKind result() const override { return ResultKind::velocityChange; }
+
+    void addAcceleration(Scene& s, Scalar dt) override {
         if (!(dt > 0)) return;
-        const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
-        const auto& rho = s.fluid.density();
+        const Scalar scale = c_ / dt;
         auto& a = s.fluid.acceleration();
-        const Scalar m = s.fluid.particleMass();
-        for (std::size_t i = 0; i < x.size(); ++i) {
-            Vec3 dv = Vec3::Zero();
-            forEachNeighbour(s.search.fluidNeighbours(), x, x, i, [&](Index j, const Vec3&, Scalar r2) {
-                dv += (2 * m * s.kernel.WSq(r2) / (rho[i] + rho[j])) * (v[j] - v[i]);
-            });
-            a[i] += (c_ / dt) * dv;
-        }
+        const SmoothingTerm term{s.kernel, s.fluid.velocity().data(), s.fluid.density().data(), s.fluid.particleMass()};
+        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& dv) { a[i] += scale * dv; });
     }
 
 private:
