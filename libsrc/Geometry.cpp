@@ -181,7 +181,11 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         Vec3 velocity = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
         if (dim == 2) velocity[2] = 0;
         // the top of the block along gravity: the highest of its corners
+        const bool hydrostatic = f.getWordOrDefault("initialPressure", {"zero", "hydrostatic"}, "zero") == "hydrostatic";
         const Scalar g = gravity.norm();
+        if (hydrostatic && !(g > 0))
+            throw InputError(f.locationOf("initialPressure"), "initialPressure hydrostatic needs gravity "
+                                                               "(constant/fluidProperties)", "initialPressure");
         const Vec3 up = g > 0 ? Vec3(-gravity / g) : Vec3::Zero();
         Scalar top = -std::numeric_limits<Scalar>::max();
         for (int corner = 0; corner < (1 << dim); ++corner) {
@@ -196,7 +200,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 if (s.contains(p, dim)) return;
             out.fluidPositions.push_back(p);
             out.fluidVelocities.push_back(velocity);
-            out.fluidDepths.push_back(g > 0 ? top - up.dot(p) : Scalar(0));
+            out.fluidDepths.push_back(hydrostatic ? top - up.dot(p) : Scalar(0));
         });
         if (out.fluidPositions.size() == before)
             throw InputError(f.where(), "fluid block '" + name + "' produced no particles (is it smaller than particleSpacing, or inside a wall?)");

@@ -1,7 +1,8 @@
 // Spindrift — constant/geometry: fluid blocks and walls sampled into particles on the lattice
 // of spacing Δx.
 //
-//   fluid { <name> { type box; min (..); max (..); velocity (0 0 0); } ... }
+//   fluid { <name> { type box; min (..); max (..); velocity (0 0 0); initialPressure zero; } ... }
+//           initialPressure hydrostatic: the block starts at p = ρ0 |g| (depth below its top)
 //   walls { <name> { type container; min (..); max (..); layers 3; open (yMax); }   // hollow box
 //           <name> { type box; min (..); max (..); layers 3;                        // solid block
 //                    motion { type linear; velocity (0.5 0 0); } } ... }           // optional (Motion.hpp)
@@ -32,8 +33,8 @@ struct SampledWall {
 struct SampledGeometry {
     std::vector<Vec3> fluidPositions;
     std::vector<Vec3> fluidVelocities;
-    // each fluid particle's depth below the top of its block, along gravity (0 without gravity):
-    // the hydrostatic start gives it p = ρ0 |g| depth
+    // each fluid particle's depth below the top of its block along gravity, where the block starts
+    // hydrostatic (initialPressure hydrostatic), else 0: the start gives it p = ρ0 |g| depth
     std::vector<Scalar> fluidDepths;
     std::vector<SampledWall> walls;
     Vec3 boundsMin = Vec3::Zero(), boundsMax = Vec3::Zero(); // of everything sampled

@@ -10,6 +10,7 @@
 // exactly; the core refuses a model whose result the integrator cannot apply.
 #pragma once
 
+#include "DensityDiffusion.hpp"
 #include "ModelContext.hpp"
 
 #include <functional>
@@ -57,5 +58,17 @@ template <class F> void forEachFluidParticle(const Scene& s, F&& f) {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) f(i);
 }
+
+// The velocity particle i moves with: its own, plus the shifting model's transport correction δv
+// when the case names one (Scene::shiftingVelocity).
+inline Vec3 advectionVelocity(const Scene& s, const std::vector<Vec3>& v, std::size_t i) {
+    return s.shiftingVelocity ? Vec3(v[i] + (*s.shiftingVelocity)[i]) : v[i];
+}
+
+// Advances every integrated field (continuity density) over a step dt: its rate from the
+// fluid's current velocities — those the particles move with over the step — at the positions
+// the step starts from (call it before the drift, while the lists are those of these positions),
+// plus a density-diffusion term for the density, then value += dt · rate.
+void advanceIntegratedFields(Scene& s, Scalar dt);
 
 } // namespace spindrift

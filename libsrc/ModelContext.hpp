@@ -41,6 +41,8 @@ class Integrator;
 class BoundaryModel;
 class ExtraForce;
 class FunctionObject;
+class DensityDiffusion;
+class ShiftingModel;
 template <> struct KindName<Kernel> { static constexpr const char* value = "kernel"; };
 template <> struct KindName<PressureModel> { static constexpr const char* value = "pressure"; };
 template <> struct KindName<ViscosityModel> { static constexpr const char* value = "viscosity"; };
@@ -48,5 +50,7 @@ template <> struct KindName<Integrator> { static constexpr const char* value = "
 template <> struct KindName<BoundaryModel> { static constexpr const char* value = "boundary"; };
 template <> struct KindName<ExtraForce> { static constexpr const char* value = "force"; };
 template <> struct KindName<FunctionObject> { static constexpr const char* value = "functionObject"; };
+template <> struct KindName<DensityDiffusion> { static constexpr const char* value = "densityDiffusion"; };
+template <> struct KindName<ShiftingModel> { static constexpr const char* value = "shifting"; };
 
 } // namespace spindrift

@@ -22,8 +22,8 @@ std::string pluginFileName(const std::string& kind, const std::string& name) {
 }
 
 const std::vector<std::string>& ModelRegistry::kinds() {
-    static const std::vector<std::string> k{"kernel",     "pressure", "viscosity",     "integrator",
-                                                  "boundary",   "force",    "functionObject"};
+    static const std::vector<std::string> k{"kernel",   "pressure",         "viscosity", "integrator", "boundary",
+                                            "force",    "densityDiffusion", "shifting",  "functionObject"};
     return k;
 }
 

@@ -12,10 +12,12 @@
 #pragma once
 
 #include "BoundaryModel.hpp"
+#include "DensityDiffusion.hpp"
 #include "FunctionObject.hpp"
 #include "Integrator.hpp"
 #include "Kernel.hpp"
 #include "PressureModel.hpp"
+#include "ShiftingModel.hpp"
 #include "ViscosityModel.hpp"
 
 #include <filesystem>
@@ -31,7 +33,7 @@ public:
     // The process-wide registry (libraries it opened stay loaded until exit).
     static ModelRegistry& instance();
 
-    // kernel pressure viscosity integrator boundary force functionObject
+    // kernel pressure viscosity integrator boundary force densityDiffusion shifting functionObject
     static const std::vector<std::string>& kinds();
 
     const std::vector<std::filesystem::path>& searchPath() const { return searchPath_; }

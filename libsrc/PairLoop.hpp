@@ -198,6 +198,26 @@ inline void summationDensity(const Scene& s, const std::vector<Vec3>& x, std::ve
     });
 }
 
+// The continuity equation (Monaghan 1992): dρ_i/dt = Σ_j m (v_i − v_j)·∇_i W_ij + Σ_b M_b (v_i − v_b)·∇_i W_ib,
+// v_b the wall's own velocity (zero when fixed), at the fluid's positions.
+struct ContinuityTerm {
+    struct Sum {
+        Scalar fluid = 0, wall = 0; // Σ_j (v_i − v_j)·∇W_ij, Σ_b M_b (v_i − v_b)·∇W_ib
+    };
+    static constexpr bool usesGradient = true;
+    using Particle = Vec3; // v_i
+    const Vec3* v;
+    Particle particle(std::size_t i) const { return v[i]; }
+    void fluid(const Vec3& vi, const Pair& p, Sum& sum) const { sum.fluid += (vi - v[p.j]).dot(p.gradW); }
+    void wall(const Vec3& vi, const WallPair& p, Sum& sum) const { sum.wall += p.mass() * (vi - p.wall.v[p.j]).dot(p.gradW); }
+};
+inline void continuityDensityRate(const Scene& s, std::vector<Scalar>& rate) {
+    const Scalar m = s.fluid.particleMass();
+    rate.resize(s.fluid.size());
+    forEachPairSum(s, s.fluid.position(), ContinuityTerm{s.fluid.velocity().data()},
+                   [&](std::size_t i, const auto&, const auto& sum) { rate[i] = m * sum.fluid + sum.wall; });
+}
+
 // The symmetric pressure acceleration from q = p/ρ² (Monaghan 1992):
 //   a_i = −Σ_j m (q_i + q_j) ∇_i W_ij − Σ_b M_b (q_i + q_b) ∇_i W_ib,
 // q_b = q_i on a wall that mirrors the fluid's pressure, else its own p_b/ρ_b².

@@ -21,6 +21,9 @@ public:
     // model initialises (it goes into Scene::constants); 0 for incompressible solvers.
     // 'constants' holds everything but the sound speed itself.
     virtual Scalar soundSpeed(const SceneConstants& /*constants*/, const PhysicalParameters&) const { return 0; }
+    // γ of its Tait equation of state (0 without one): with the sound speed, the core's
+    // SceneConstants::densityAt inverts the equation of state for walls of their own pressure.
+    virtual Scalar eosExponent() const { return 0; }
     virtual void initialise(Scene&) {}
     virtual void computeDensity(Scene& scene) = 0;
     virtual void addPressureAcceleration(Scene& scene, Scalar dt) = 0;

@@ -26,6 +26,7 @@
 #include "ParticleSet.hpp"
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +51,33 @@ struct SceneConstants {
     Scalar fluidHeight = 0;   // H [m]: the initial fluid's extent along gravity, plus Δx (0 without gravity)
     Scalar soundSpeed = 0;    // c0 [m/s] of the pressure model's equation of state; 0 for the
                               // incompressible solvers (PressureModel::soundSpeed declares it)
+    Scalar eosExponent = 0;   // γ of its Tait equation of state (PressureModel::eosExponent)
+    Scalar rho0 = 0;          // rest density [kg/m^d]
+
+    // The density at pressure p by the pressure model's equation of state, inverted:
+    // ρ0 (p/B + 1)^(1/γ), B = c0² ρ0/γ (Tait); ρ0 for an incompressible solver (c0 = 0). Walls
+    // with a pressure of their own (adami) take their density from it.
+    Scalar densityAt(Scalar p) const {
+        if (!(soundSpeed > 0) || !(eosExponent > 0)) return rho0;
+        const Scalar B = soundSpeed * soundSpeed * rho0 / eosExponent;
+        return rho0 * std::pow(std::max(p / B + 1, Scalar(1e-3)), 1 / eosExponent);
+    }
+};
+
+class BoundaryModel;
+class DensityDiffusion;
+struct Scene;
+
+// A per-particle quantity a model integrates in time beside position and velocity (continuity
+// density). The integrator advances it as the particles move, value += Δt rate
+// (advanceIntegratedFields, Integrator.hpp), with the rate computeRate gives from the velocities
+// the particles move with over the step, at the positions the step starts from (on the step's
+// lists): a symplectic pairing, as the velocity's. (A rate taken with the old velocities makes
+// the density–velocity acoustic waves grow every step: a tank at rest erupted in 0.1 s.)
+struct IntegratedField {
+    std::vector<Scalar>* value;
+    std::vector<Scalar>* rate;
+    std::function<void(const Scene&, std::vector<Scalar>& rate)> computeRate;
 };
 
 // Convergence of an iterative pressure solver in the last step (zero for explicit models).
@@ -110,6 +138,16 @@ struct Scene {
     NeighbourSearch search;
     KernelTable kernel;
     PairGradients gradients;
+    // quantities models integrate in time (registered in their initialise())
+    std::vector<IntegratedField> integratedFields;
+    // the boundary model, for pressure solvers that change the fluid's pressure in their
+    // iterations and must carry it to walls of their own pressure (BoundaryModel::updatePressure)
+    BoundaryModel* boundaryModel = nullptr;
+    // a density-diffusion model (δ-SPH), adding to the rate of the integrated density
+    const DensityDiffusion* densityDiffusion = nullptr;
+    // the transport velocity correction δv of a shifting model (fluid field "shiftingVelocity"):
+    // particles move with v + δv (the integrators' drift), null without one
+    const std::vector<Vec3>* shiftingVelocity = nullptr;
 
     double time = 0;
     long step = 0;

@@ -3,6 +3,7 @@
 #include "Geometry.hpp"
 #include "Log.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -85,6 +86,10 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
             forces_.push_back(registry.create<ExtraForce>(forces->subDict(name), physics, solutionFor(name),
                                                           case_.dir, name));
     }
+    if (const Dictionary* d = schemes.findDict("densityDiffusion"))
+        densityDiffusion_ = registry.create<DensityDiffusion>(*d, physics, solutionFor("densityDiffusion"));
+    if (const Dictionary* d = schemes.findDict("shifting"))
+        shifting_ = registry.create<ShiftingModel>(*d, physics, solutionFor("shifting"));
     if (const Dictionary* ns = schemes.findDict("neighbourSearch")) {
         sortEvery_ = ns->getOrDefault<int>("sortEvery", 10);
         ns->checkAllKeywordsUsed();
@@ -92,6 +97,7 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
 
     buildParticles();
     resolveConstants();
+    applyInitialPressure();
 
     if (scene_.hasWalls()) {
         if (!schemes.findDict("boundary"))
@@ -107,8 +113,25 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     case_.sphSolution.markUsed("viscosity");
     case_.sphSolution.checkAllKeywordsUsed();
 
+    scene_.boundaryModel = boundaryModel_.get();
     if (boundaryModel_) boundaryModel_->initialise(scene_);
     pressure_->initialise(scene_);
+    if (densityDiffusion_) {
+        // it acts on a density the integrator advances (continuity), never on a summed one
+        const bool integrated = std::any_of(scene_.integratedFields.begin(), scene_.integratedFields.end(),
+                                            [&](const IntegratedField& f) { return f.value == &scene_.fluid.density(); });
+        if (!integrated)
+            throw InputError(schemes.subDict("densityDiffusion").where(),
+                             "densityDiffusion acts on a density integrated in time: give the pressure model "
+                             "'density continuity;' (wcsph, isobaric), or leave densityDiffusion out",
+                             "densityDiffusion");
+        densityDiffusion_->initialise(scene_);
+        scene_.densityDiffusion = densityDiffusion_.get();
+    }
+    if (shifting_) {
+        scene_.shiftingVelocity = &scene_.fluid.addVector("shiftingVelocity", {false, true});
+        shifting_->initialise(scene_);
+    }
     if (viscosity_) viscosity_->initialise(scene_);
     for (auto& f : forces_) f->initialise(scene_);
     integrator_->initialise(scene_);
@@ -144,6 +167,7 @@ void Simulation::buildParticles() {
         fluid.density()[i] = physics.rho0;
         fluid.id()[i] = Index(i);
     }
+    initialDepths_ = g.fluidDepths;
     // Each wall entry is a wall system; the vector is not resized after this (the search keeps
     // pointers to the walls' positions).
     scene_.walls.clear();
@@ -211,9 +235,21 @@ void Simulation::buildParticles() {
 void Simulation::resolveConstants() {
     SceneConstants& c = scene_.constants;
     c.particleMass = scene_.fluid.particleMass();
+    c.rho0 = scene_.physics.rho0;
     c.soundSpeed = pressure_->soundSpeed(c, scene_.physics);
+    c.eosExponent = pressure_->eosExponent();
     if (!(c.soundSpeed >= 0) || !std::isfinite(c.soundSpeed))
         throw std::logic_error("the pressure model declared a sound speed that is not a finite non-negative number");
+}
+
+void Simulation::applyInitialPressure() {
+    auto& fluid = scene_.fluid;
+    const Scalar rhoG = scene_.physics.rho0 * scene_.physics.gravity.norm();
+    for (std::size_t i = 0; i < fluid.size(); ++i) {
+        const Scalar p = rhoG * initialDepths_[i];
+        fluid.pressure()[i] = p;
+        fluid.density()[i] = scene_.constants.densityAt(p);
+    }
 }
 
 void Simulation::checkIntegratorApplies(const Dictionary& schemes) const {
@@ -358,6 +394,8 @@ std::string Simulation::schemesSummary() const {
     s << "kernel " << type("kernel") << ", pressure " << type("pressure") << ", viscosity "
       << (viscosity_ ? type("viscosity") : "none") << ", integrator " << type("integrator")
       << ", boundary " << (boundaryModel_ ? type("boundary") : "none");
+    if (densityDiffusion_) s << ", densityDiffusion " << type("densityDiffusion");
+    if (shifting_) s << ", shifting " << type("shifting");
     if (const Dictionary* forces = case_.sphSchemes.findDict("forces"))
         for (const auto& name : forces->keywords()) s << ", force " << forces->subDict(name).get<std::string>("type");
     return s.str();
@@ -378,6 +416,7 @@ void Simulation::evaluate(double time, Scalar dt) {
     if (viscosity_) viscosity_->addAcceleration(s, dt);
     for (auto& f : forces_) f->addAcceleration(s, dt);
     pressure_->addPressureAcceleration(s, dt);
+    if (shifting_) shifting_->computeShift(s, dt);
 }
 
 double Simulation::stableDeltaT() const {

@@ -54,6 +54,10 @@ private:
     void rereadControlDictIfChanged();
     void buildParticles();
     void resolveConstants();
+    // The sampled blocks' initial pressure (a hydrostatic start: p = ρ0 |g| depth) and the density
+    // the pressure model's equation of state gives it; before the models initialise, so solvers
+    // warm-start from it.
+    void applyInitialPressure();
     void checkIntegratorApplies(const Dictionary& schemes) const;
     // Moves the moving walls to where their motion puts them at 'time' (positions, velocities,
     // accelerations).
@@ -78,6 +82,8 @@ private:
     std::unique_ptr<PostProcessingFile> solverPerformance_; // iterative pressure solvers only
     std::unique_ptr<Integrator> integrator_;
     std::unique_ptr<BoundaryModel> boundaryModel_;
+    std::unique_ptr<DensityDiffusion> densityDiffusion_;
+    std::unique_ptr<ShiftingModel> shifting_;
     std::vector<std::string> writeFields_;
     int sortEvery_ = 10;
     bool reduceDeltaTOnBlowUp_ = false;
@@ -88,6 +94,7 @@ private:
     bool runTimeModifiable_ = true;
     std::filesystem::file_time_type controlDictTime_;
     double lastDeltaT_ = 0;
+    std::vector<Scalar> initialDepths_; // of the fluid particles, where their block starts hydrostatic
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
     Periodicity periodic_;

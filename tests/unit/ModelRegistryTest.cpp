@@ -183,3 +183,14 @@ TEST(ModelRegistry, PluginsCarryTheKindOfTheirBaseClassAndTheNameOfTheirCMakeCal
 }
 
 } // namespace
+
+// The kinds are listed by ModelRegistry::kinds(); CMake's spindrift_add_plugin and the bash
+// completion cannot ask it, so they carry a copy each: it must be the same list.
+TEST(ModelRegistry, KindListsAgreeEverywhere) {
+    std::string kinds;
+    for (const auto& k : ModelRegistry::kinds()) kinds += (kinds.empty() ? "" : " ") + k;
+    const std::string cmake = test::readFile(std::filesystem::path(SPINDRIFT_SOURCE_DIR) / "cmake/SpindriftPlugin.cmake");
+    EXPECT_NE(cmake.find("set(kinds " + kinds + ")"), std::string::npos) << "cmake/SpindriftPlugin.cmake: " << kinds;
+    const std::string completion = test::readFile(std::filesystem::path(SPINDRIFT_SOURCE_DIR) / "etc/bash-completion/spindrift");
+    EXPECT_NE(completion.find("\"" + kinds + "\""), std::string::npos) << "etc/bash-completion/spindrift: " << kinds;
+}

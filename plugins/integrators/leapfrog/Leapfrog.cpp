@@ -1,7 +1,8 @@
 // leapfrog — kick–drift–kick leapfrog (velocity form): v_{n+½} = v_n + ½Δt a_n,
 // x_{n+1} = x_n + Δt v_{n+½}, a_{n+1} = a(x_{n+1}, v_{n+½}), v_{n+1} = v_{n+½} + ½Δt a_{n+1}.
 // Second order for velocity-independent forces; one evaluation per step (a_{n+1} is reused as
-// the next step's a_n).
+// the next step's a_n). An integrated field (continuity density) takes the rate of the half-step
+// velocities at x_n: ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_{n+½}).
 #include "Integrator.hpp"
 #include "Plugin.hpp"
 
@@ -18,10 +19,9 @@ public:
         auto& v = s.fluid.velocity();
         const auto& a = s.fluid.acceleration();
         const Scalar half = Scalar(0.5) * dt;
-        forEachFluidParticle(s, [&](std::size_t i) {
-            v[i] += half * a[i];
-            x[i] += dt * v[i];
-        });
+        forEachFluidParticle(s, [&](std::size_t i) { v[i] += half * a[i]; });
+        advanceIntegratedFields(s, dt); // ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_{n+½})
+        forEachFluidParticle(s, [&](std::size_t i) { x[i] += dt * advectionVelocity(s, v, i); });
         evaluateAtEnd(s, dt, evaluate);
         forEachFluidParticle(s, [&](std::size_t i) { v[i] += half * a[i]; });
     }

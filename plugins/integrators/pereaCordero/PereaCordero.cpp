@@ -64,11 +64,21 @@ public:
         auto& level = *s.fluid.findScalar("historyLength");
         const Scalar c0 = c_[0], c1 = c_[1], c2 = c_[2];
         const Scalar kx = beta2_ * dt * dt / 6, kv = beta1_ * dt / 2, half = Scalar(0.5) * dt * dt;
+        // an integrated field (continuity density) with the mid-step velocities at x_n
+        if (!s.integratedFields.empty()) {
+            mid_.resize(x.size());
+            forEachFluidParticle(s, [&](std::size_t i) {
+                mid_[i] = v[i];
+                v[i] += Scalar(0.5) * dt * a[i];
+            });
+            advanceIntegratedFields(s, dt);
+            forEachFluidParticle(s, [&](std::size_t i) { v[i] = mid_[i]; });
+        }
         forEachFluidParticle(s, [&](std::size_t i) {
             const bool full = level[i] >= 2;
             const Vec3 am1 = full ? a1[i] : a[i], am2 = full ? a2[i] : a[i];
             const Vec3 d = c0 * a[i] + c1 * am1 + c2 * am2;
-            x[i] += dt * v[i] + half * a[i] + kx * d;
+            x[i] += dt * advectionVelocity(s, v, i) + half * a[i] + kx * d;
             v[i] += dt * a[i] + kv * d;
             a2[i] = level[i] >= 1 ? a1[i] : a[i];
             a1[i] = a[i];
@@ -80,6 +90,7 @@ public:
 private:
     Scalar beta1_, beta2_;
     Scalar c_[3];
+    std::vector<Vec3> mid_; // v_n while the velocities are the mid-step ones
 };
 } // namespace
 

@@ -1,4 +1,6 @@
-// symplecticEuler — semi-implicit Euler: v_{n+1} = v_n + Δt a(x_n, v_n), x_{n+1} = x_n + Δt v_{n+1}.
+// symplecticEuler — semi-implicit Euler: v_{n+1} = v_n + Δt a(x_n, v_n), x_{n+1} = x_n + Δt v_{n+1}
+// (+ Δt δv of a shifting model), and an integrated field (continuity density) ρ_{n+1} = ρ_n + Δt ρ̇
+// with the rate of v_{n+1} at x_n (symplectic, as x and v).
 // First order, symplectic; the integrator PCISPH, PBF and DFSPH are formulated with, so the one
 // that applies their Δx/Δt² and Δv/Δt results exactly (ResultKind).
 #include "Integrator.hpp"
@@ -19,10 +21,9 @@ public:
         auto& x = s.fluid.position();
         auto& v = s.fluid.velocity();
         const auto& a = s.fluid.acceleration();
-        forEachFluidParticle(s, [&](std::size_t i) {
-            v[i] += dt * a[i];
-            x[i] += dt * v[i];
-        });
+        forEachFluidParticle(s, [&](std::size_t i) { v[i] += dt * a[i]; });
+        advanceIntegratedFields(s, dt); // with v_{n+1}, at x_n
+        forEachFluidParticle(s, [&](std::size_t i) { x[i] += dt * advectionVelocity(s, v, i); });
     }
 };
 } // namespace

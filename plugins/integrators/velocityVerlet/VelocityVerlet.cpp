@@ -24,10 +24,13 @@ public:
         const auto& a = s.fluid.acceleration();
         halfKick_.resize(s.fluid.size()); // v_n + ½Δt a_n, scratch within the step
         const Scalar half = Scalar(0.5) * dt;
+        forEachFluidParticle(s, [&](std::size_t i) { v[i] = halfKick_[i] = v[i] + half * a[i]; });
+        // an integrated field (continuity density) with the mid-step velocities at x_n:
+        // ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_n + ½Δt a_n)
+        advanceIntegratedFields(s, dt);
         forEachFluidParticle(s, [&](std::size_t i) {
-            x[i] += dt * (v[i] + half * a[i]);
-            halfKick_[i] = v[i] + half * a[i];
-            v[i] += dt * a[i];
+            x[i] += dt * advectionVelocity(s, v, i); // = x_n + Δt (v_n + ½Δt a_n)
+            v[i] = halfKick_[i] + half * a[i];       // v*
         });
         evaluateAtEnd(s, dt, evaluate);
         forEachFluidParticle(s, [&](std::size_t i) { v[i] = halfKick_[i] + half * a[i]; });

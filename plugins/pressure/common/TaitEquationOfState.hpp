@@ -3,7 +3,11 @@
 //
 // Dictionary keywords (read by read()): gamma (7), soundSpeed c0 [m/s] (default
 // 10·sqrt(2|g|H) from the initial fluid height H along gravity, i.e. ~1 % density variation
-// for a free fall from H), clampNegativePressure (yes: p = max(p, 0), for free surfaces).
+// for a free fall from H), clampNegativePressure (yes: p = max(p, 0), for free surfaces),
+// density (summation: ρ_i = Σ_j m W_ij + Σ_b M_b W_ib from the positions | continuity: ρ is
+// integrated in time from dρ_i/dt = Σ_j m v_ij·∇W_ij + Σ_b M_b v_ib·∇W_ib, Monaghan 1992 — no
+// deficit at a free surface, the density a density-diffusion term (δ-SPH) acts on, and the one
+// a hydrostatic start sets).
 // The sound speed is resolved once at set-up (resolveSoundSpeed, through the pressure model's
 // soundSpeed()) and read back from Scene::constants in initialise().
 #pragma once
@@ -21,6 +25,7 @@ struct TaitEquationOfState {
     Scalar gamma = 7;
     Scalar soundSpeed = 0; // 0 until resolved
     bool clampNegative = true;
+    bool continuity = false; // density by the continuity equation (integrated), not by summation
     Scalar rho0 = 1000;
     Scalar B = 0;
     int integerGamma = 0; // γ when it is a whole number (7): (ρ/ρ0)^γ by multiplication, not pow
@@ -33,6 +38,7 @@ struct TaitEquationOfState {
         if (d.found("soundSpeed") && !(soundSpeed > 0))
             throw InputError(d.locationOf("soundSpeed"), "soundSpeed must be positive", "soundSpeed");
         clampNegative = d.getOrDefault<bool>("clampNegativePressure", true);
+        continuity = d.getWordOrDefault("density", {"summation", "continuity"}, "summation") == "continuity";
         integerGamma = gamma == std::round(gamma) && gamma <= 16 ? int(gamma) : 0;
         B = soundSpeed * soundSpeed * rho0 / gamma;
     }
@@ -50,18 +56,25 @@ struct TaitEquationOfState {
     }
 
     // Takes the sound speed the core resolved (Scene::constants), or resolves it the same way
-    // where no core did (a model made by hand, as in the unit tests).
-    void initialise(const Scene& s) {
+    // where no core did (a model made by hand, as in the unit tests). With continuity density the
+    // density becomes a field the integrator advances with its rate: its start is the one set-up
+    // gave (ρ0, or a hydrostatic start's).
+    void initialise(Scene& s) {
         soundSpeed = s.constants.soundSpeed > 0 ? s.constants.soundSpeed : resolveSoundSpeed(s.constants, s.physics);
         B = soundSpeed * soundSpeed * rho0 / gamma;
+        if (continuity)
+            s.integratedFields.push_back({&s.fluid.density(), &s.fluid.addScalar("densityRate", {false, false}),
+                                          [](const Scene& scene, std::vector<Scalar>& rate) {
+                                              continuityDensityRate(scene, rate);
+                                          }});
     }
 
-    // The weakly compressible density and pressure: summation density (walls included), then
-    // p_i = p(ρ_i) for every fluid particle.
+    // The weakly compressible density and pressure: summation density (walls included), or the
+    // integrated density as it is (continuity), then p_i = p(ρ_i) for every fluid particle.
     void densityAndPressure(Scene& s) const {
         auto& rho = s.fluid.density();
         auto& p = s.fluid.pressure();
-        summationDensity(s, s.fluid.position(), rho);
+        if (!continuity) summationDensity(s, s.fluid.position(), rho);
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < rho.size(); ++i) p[i] = pressure(rho[i]);
     }

@@ -111,6 +111,7 @@ public:
     Scalar soundSpeed(const SceneConstants& c, const PhysicalParameters& physics) const override {
         return eos_.resolveSoundSpeed(c, physics);
     }
+    Scalar eosExponent() const override { return eos_.gamma; }
     void initialise(Scene& s) override {
         eos_.initialise(s);
         towardsWall_ = &s.fluid.addVector("isobaricTowardsWall", {false, false, true});

@@ -18,6 +18,7 @@ public:
     Scalar soundSpeed(const SceneConstants& c, const PhysicalParameters& physics) const override {
         return eos_.resolveSoundSpeed(c, physics);
     }
+    Scalar eosExponent() const override { return eos_.gamma; }
     void initialise(Scene& s) override { eos_.initialise(s); }
 
     void computeDensity(Scene& s) override { eos_.densityAndPressure(s); }

@@ -1,0 +1,125 @@
+// adami — the generalised wall boundary condition of Adami, Hu & Adams (2012), J. Comput. Phys.
+// 231(21), 7057–7075, doi:10.1016/j.jcp.2012.05.005; docs/MODELS.md §adami.
+//
+// Several layers of dummy particles on the fluid lattice (layers·Δx at least the support h) act
+// in every pair sum as fluid particles of mass M_b = m (the hydrodynamic mass) with a pressure,
+// density and velocity of their own, extrapolated from the fluid around each wall particle w:
+//   p_w = [Σ_f p_f W_wf + (g − a_w)·Σ_f ρ_f r_wf W_wf] / Σ_f W_wf,   r_wf = x_w − x_f   (eq. 27)
+//   ρ_w = ρ(p_w), the pressure model's equation of state inverted (ρ0 for incompressible solvers)
+//   v̂_w = 2 v_w − Σ_f v_f W_wf / Σ_f W_wf                                    (eqs. 22–23)
+// a_w and v_w are the wall's own acceleration and velocity (zero when fixed); v̂_w is the
+// velocity the viscous terms see (no slip: the fluid's velocity mirrored through the wall's);
+// the continuity equation and the pressure term use the wall's own. With `slip yes` the viscous
+// terms see the fluid's own average velocity at the wall instead (free slip: no shear). A wall
+// particle without fluid in its support keeps p_w = 0, ρ_w = ρ0, v̂_w = v_w. Pressure solvers
+// that change the fluid's pressure within a step carry it to the walls (updatePressure).
+// clampNegativePressure (yes): p_w ≥ 0, so a wall does not pull a free-surface flow onto it
+// where the hydrostatic term turns negative (a wall above the fluid).
+//
+//   boundary { type adami; slip no; clampNegativePressure yes; }
+#include "BoundaryModel.hpp"
+#include "Log.hpp"
+#include "PairLoop.hpp"
+#include "Plugin.hpp"
+
+#include <sstream>
+
+namespace {
+using namespace spindrift;
+
+class Adami final : public BoundaryModel {
+public:
+    explicit Adami(const ModelContext& c)
+        : slip_(c.dict.getOrDefault<bool>("slip", false)),
+          clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)) {}
+
+    void initialise(Scene& s) override {
+        const Scalar m = s.fluid.particleMass(), latticeSum = s.physics.rho0 / m;
+        const auto& kt = s.kernel;
+        for (std::size_t k = 0; k < s.walls.size(); ++k) {
+            WallSystem& w = s.walls[k];
+            auto& mass = w.particles.addScalar("wallMass", {true, false});
+            std::fill(mass.begin(), mass.end(), m);
+            w.mass = &mass;
+            w.pressureMirrored = false;
+            w.particles.addScalar("pressure", {true, false}); // the wall's own, written
+            w.particles.addScalar("density", {true, false});
+            w.viscousVelocity = &w.particles.addVector("viscousVelocity", {false, false});
+            // the walls must cover the support: some particle has a full wall neighbourhood
+            const NeighbourList list = s.search.wallWallList(k, k);
+            const auto& x = w.particles.position();
+            Scalar fullest = 0;
+            for (std::size_t b = 0; b < x.size(); ++b) {
+                Scalar sum = kt.W0();
+                forEachNeighbour(list, x, x, b, [&](Index, const Vec3&, Scalar r2) { sum += kt.WSq(r2); });
+                fullest = std::max(fullest, sum / latticeSum);
+            }
+            if (fullest < Scalar(0.95)) {
+                std::ostringstream msg;
+                msg << "adami: wall '" << w.name() << "' is thinner than the kernel support (its fullest wall "
+                    << "neighbourhood is " << fullest << " of a full one): give it more layers, or the fluid "
+                    << "sees a truncated wall and may leak through corners";
+                log::warning(msg.str());
+            }
+        }
+    }
+
+    void update(Scene& s) override { extrapolate(s, s.fluid.pressure(), true); }
+    void updatePressure(Scene& s, const std::vector<Scalar>& fluidPressure) override {
+        extrapolate(s, fluidPressure, false);
+    }
+
+private:
+    // p_w, ρ_w (and v̂_w when 'velocities') of every wall from the fluid pressure p.
+    void extrapolate(Scene& s, const std::vector<Scalar>& p, bool velocities) const {
+        const auto& kt = s.kernel;
+        const auto& xf = s.fluid.position();
+        const auto& vf = s.fluid.velocity();
+        const auto& rhof = s.fluid.density();
+        const Vec3 g = s.physics.gravity;
+        const SceneConstants& c = s.constants;
+        const bool clamp = clampNegative_, slip = slip_;
+        for (std::size_t k = 0; k < s.walls.size(); ++k) {
+            WallSystem& w = s.walls[k];
+            const NeighbourList& list = s.search.wallFluidNeighbours(k);
+            const auto& xw = w.particles.position();
+            const auto& vw = w.particles.velocity();
+            const auto& aw = w.particles.acceleration();
+            auto& pw = w.particles.pressure();
+            auto& rhow = w.particles.density();
+            auto& vv = *w.particles.findVector("viscousVelocity");
+            const std::size_t n = xw.size();
+#pragma omp parallel for schedule(static)
+            for (std::size_t b = 0; b < n; ++b) {
+                Scalar sumW = 0, sumP = 0;
+                Vec3 sumRhoR = Vec3::Zero(), sumV = Vec3::Zero();
+                forEachNeighbour(list, xw, xf, b, [&](Index f, const Vec3& r, Scalar r2) {
+                    const Scalar W = kt.WSq(r2);
+                    sumW += W;
+                    sumP += p[f] * W;
+                    sumRhoR += (rhof[f] * W) * r;
+                    if (velocities) sumV += W * vf[f];
+                });
+                if (!(sumW > 0)) {
+                    pw[b] = 0;
+                    rhow[b] = c.rho0;
+                    if (velocities) vv[b] = vw[b];
+                    continue;
+                }
+                Scalar pb = (sumP + (g - aw[b]).dot(sumRhoR)) / sumW;
+                if (clamp) pb = std::max(pb, Scalar(0));
+                pw[b] = pb;
+                rhow[b] = c.densityAt(pb);
+                if (velocities) {
+                    const Vec3 fluidVelocity = sumV / sumW;
+                    vv[b] = slip ? fluidVelocity : Vec3(2 * vw[b] - fluidVelocity);
+                }
+            }
+        }
+    }
+
+    bool slip_, clampNegative_;
+};
+} // namespace
+
+SPINDRIFT_PLUGIN(BoundaryModel, Adami)

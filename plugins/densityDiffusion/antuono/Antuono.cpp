@@ -1,0 +1,101 @@
+// antuono — the density diffusion of δ-SPH, Antuono et al. (2010), Comput. Phys. Commun. 181(3),
+// 532–549, doi:10.1016/j.cpc.2009.11.002 (as written up in Antuono, Colagrossi & Marrone 2012,
+// doi:10.1016/j.cpc.2012.07.006); docs/MODELS.md §antuono. Molteni & Colagrossi's term less the
+// part of the density difference a linear density field explains:
+//   dρ_i/dt += δ h c0 Σ_j V_j [(ρ_i − ρ_j) − ½ (∇ρ^L_i + ∇ρ^L_j)·r_ij] (r_ij·∇_i W_ij) / (r² + 0.01 h²)
+//   ∇ρ^L_i = Σ_j (ρ_j − ρ_i) V_j L_i ∇_i W_ij,   L_i = (−Σ_j V_j r_ij ⊗ ∇_i W_ij)⁻¹
+// (the renormalised density gradient; L_i = I where the matrix is singular, e.g. a particle
+// alone). In a column at rest the density is linear in depth and the bracket vanishes. Fluid
+// pairs only; h the support radius (= 2 h_s). A pass more than molteni (the gradients, kept in
+// the scratch field `densityGradient`).
+//
+//   densityDiffusion { type antuono; delta 0.1; }
+#include "DensityDiffusion.hpp"
+#include "PairLoop.hpp"
+#include "Plugin.hpp"
+
+#include <Eigen/LU>
+
+namespace {
+using namespace spindrift;
+
+using Mat3 = Eigen::Matrix<Scalar, 3, 3>;
+
+// Σ_j V_j (ρ_j − ρ_i) ∇W_ij and −Σ_j V_j r_ij ⊗ ∇W_ij.
+struct DensityGradientTerm {
+    struct Sum {
+        Vec3 gradient = Vec3::Zero();
+        Mat3 moment = Mat3::Zero();
+    };
+    static constexpr bool usesGradient = true;
+    using Particle = Scalar; // ρ_i
+    const Scalar* rho;
+    Scalar m;
+    Particle particle(std::size_t i) const { return rho[i]; }
+    void fluid(Scalar rhoi, const Pair& q, Sum& sum) const {
+        const Scalar V = m / rho[q.j];
+        sum.gradient += (V * (rho[q.j] - rhoi)) * q.gradW;
+        sum.moment -= V * q.r * q.gradW.transpose();
+    }
+};
+
+struct AntuonoTerm {
+    using Sum = Scalar;
+    static constexpr bool usesGradient = true;
+    struct Particle {
+        Scalar rho;
+        Vec3 gradient;
+    };
+    const Scalar* rho;
+    const Vec3* gradient;
+    Scalar eps;
+    Particle particle(std::size_t i) const { return {rho[i], gradient[i]}; }
+    void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
+        const Scalar bracket = pi.rho - rho[q.j] - Scalar(0.5) * (pi.gradient + gradient[q.j]).dot(q.r);
+        sum += bracket / rho[q.j] * q.r.dot(q.gradW) / (q.r2 + eps);
+    }
+};
+
+class Antuono final : public DensityDiffusion {
+public:
+    explicit Antuono(const ModelContext& c) : delta_(c.dict.getOrDefault<double>("delta", 0.1)) {
+        if (!(delta_ >= 0)) throw InputError(c.dict.locationOf("delta"), "delta must not be negative", "delta");
+    }
+
+    void initialise(Scene& s) override {
+        gradient_ = &s.fluid.addVector("densityGradient", {false, false, true});
+        dimension_ = s.physics.dimension;
+    }
+
+    void addRate(const Scene& s, std::vector<Scalar>& rate) const override {
+        const Scalar m = s.fluid.particleMass(), h = s.constants.supportRadius;
+        const auto& x = s.fluid.position();
+        const Scalar* rho = s.fluid.density().data();
+        auto& gradient = *gradient_;
+        const int d = dimension_;
+        forEachPairSum(s, x, DensityGradientTerm{rho, m}, [&](std::size_t i, Scalar, const auto& sum) {
+            // renormalise in the problem's dimensions; leave the gradient as it is where the
+            // moment matrix cannot be inverted (too few neighbours)
+            Vec3 g = sum.gradient;
+            if (d == 2) {
+                const Eigen::Matrix<Scalar, 2, 2> M = sum.moment.template topLeftCorner<2, 2>();
+                if (std::abs(M.determinant()) > Scalar(1e-3) * M.squaredNorm())
+                    g.template head<2>() = M.inverse().transpose() * g.template head<2>();
+            } else if (std::abs(sum.moment.determinant()) > Scalar(1e-3) * std::pow(sum.moment.squaredNorm(), Scalar(1.5))) {
+                g = sum.moment.inverse().transpose() * g;
+            }
+            gradient[i] = g;
+        });
+        const Scalar scale = delta_ * h * s.constants.soundSpeed * m;
+        forEachPairSum(s, x, AntuonoTerm{rho, gradient.data(), Scalar(0.01) * h * h},
+                       [&](std::size_t i, const auto&, Scalar sum) { rate[i] += scale * sum; });
+    }
+
+private:
+    Scalar delta_;
+    std::vector<Vec3>* gradient_ = nullptr;
+    int dimension_ = 2;
+};
+} // namespace
+
+SPINDRIFT_PLUGIN(DensityDiffusion, Antuono)
