@@ -171,7 +171,8 @@ private:
             if (std::isspace(static_cast<unsigned char>(c))) {
                 advance();
             } else if (c == '/' && following() == '/') {
-                while (!atEnd() && current() != '\n') advance();
+                // to the end of the line in one step: the column is reset there anyway
+                pos_ = std::min(text_.find('\n', pos_), text_.size());
             } else if (c == '/' && following() == '*') {
                 const SourceLocation start = here();
                 advance();
@@ -289,7 +290,7 @@ private:
     bool peeked_ = false;
 };
 
-Token toToken(const LexToken& t) {
+Token toToken(LexToken t) {
     Token out;
     switch (t.kind) {
     case Lex::Word: out.kind = Token::Kind::Word; break;
@@ -299,8 +300,8 @@ Token toToken(const LexToken& t) {
     case Lex::Close: out.kind = Token::Kind::Close; break;
     default: break; // never called for other kinds
     }
-    out.text = t.text;
-    out.where = t.where;
+    out.text = std::move(t.text);
+    out.where = std::move(t.where);
     return out;
 }
 
@@ -325,14 +326,46 @@ std::string tokensText(const std::vector<Token>& tokens, std::size_t begin = 0,
 // ---------------------------------------------------------------------------------------------
 // Parser
 
+namespace detail {
+
+// A dictionary's name, "controlDict.pressure.kernel": the enclosing dictionary's name and the
+// keyword, joined when first asked for. (The full name stored in every sub-dictionary would cost
+// depth times keyword length bytes each: quadratic in the input for long keywords.)
+struct ScopedName {
+    ScopedName(std::shared_ptr<const ScopedName> enclosing, std::string keyword)
+        : parent(std::move(enclosing)), last(std::move(keyword)) {}
+
+    const std::string& text() const {
+        if (!parent) return last;
+        std::call_once(joinedOnce, [this] {
+            std::vector<const std::string*> parts;
+            for (const ScopedName* n = this; n; n = n->parent.get()) parts.push_back(&n->last);
+            for (auto part = parts.rbegin(); part != parts.rend(); ++part)
+                joined.append(part == parts.rbegin() ? "" : ".").append(**part);
+        });
+        return joined;
+    }
+
+    const std::shared_ptr<const ScopedName> parent; // null at the top
+    const std::string last;                          // the keyword (the file's name at the top)
+
+private:
+    mutable std::once_flag joinedOnce;
+    mutable std::string joined;
+};
+
+} // namespace detail
+
 class DictionaryParser {
 public:
+    using Name = std::shared_ptr<const detail::ScopedName>;
+
     // 'scopes': the dictionaries that `$name` may look into, outermost first; the last one is
     // the dictionary being filled.
     explicit DictionaryParser(std::vector<Dictionary*> scopes) : scopes_(std::move(scopes)) {}
 
-    void parseText(Dictionary& into, const std::string& text, const std::string& file) {
-        Lexer lexer(text, file);
+    void parseText(Dictionary& into, std::string text, const std::string& file) {
+        Lexer lexer(std::move(text), file);
         parseEntries(lexer, into, nullptr);
     }
 
@@ -343,7 +376,7 @@ public:
         Lexer lexer(valueText, where.file);
         if (lexer.peek().kind == Lex::LBrace) {
             const LexToken open = lexer.next();
-            auto sub = std::make_shared<Dictionary>(owner.name_ + "." + keyword, where);
+            auto sub = makeDictionary(childName(owner, keyword), where);
             scopes_.push_back(sub.get());
             parseEntries(lexer, *sub, &open);
             scopes_.pop_back();
@@ -363,20 +396,27 @@ public:
         return e;
     }
 
-    static Entry* find(Dictionary& d, const std::string& keyword) {
-        for (auto& e : d.entries_)
-            if (e.keyword == keyword) return &e;
-        return nullptr;
+    static Name childName(const Dictionary& parent, const std::string& keyword) {
+        static const Name unnamed = std::make_shared<const detail::ScopedName>(nullptr, "");
+        return std::make_shared<const detail::ScopedName>(parent.name_ ? parent.name_ : unnamed, keyword);
+    }
+
+    static std::shared_ptr<Dictionary> makeDictionary(Name name, const SourceLocation& where) {
+        auto d = std::make_shared<Dictionary>();
+        d->name_ = std::move(name);
+        d->where_ = where;
+        return d;
     }
 
     // Deep copy named 'name' (sub-dictionaries renamed below it); lookup marks are not copied.
-    static std::shared_ptr<Dictionary> clone(const Dictionary& source, const std::string& name,
-                                             const SourceLocation& where) {
-        auto copy = std::make_shared<Dictionary>(name, where);
+    static std::shared_ptr<Dictionary> clone(const Dictionary& source, Name name, const SourceLocation& where) {
+        auto copy = makeDictionary(std::move(name), where);
+        copy->entries_.reserve(source.entries_.size());
+        copy->index_.reserve(source.entries_.size());
         for (const Entry& e : source.entries_) {
-            Entry c = e;
-            if (e.isDict()) c.dict = clone(*e.dict, name + "." + e.keyword, e.dict->where_);
-            copy->entries_.push_back(std::move(c));
+            Entry c{e.keyword, e.where, e.tokens, nullptr};
+            if (e.isDict()) c.dict = clone(*e.dict, childName(*copy, e.keyword), e.dict->where_);
+            copy->append(std::move(c));
         }
         return copy;
     }
@@ -384,9 +424,9 @@ public:
     // Adds an entry; a duplicate keyword replaces the earlier entry in place, except that a
     // dictionary given again is merged into the earlier one (OpenFOAM's default #inputMode merge).
     static void addEntry(Dictionary& d, Entry e) {
-        Entry* existing = find(d, e.keyword);
+        Entry* existing = d.find(std::string_view(e.keyword));
         if (!existing) {
-            d.entries_.push_back(std::move(e));
+            d.append(std::move(e));
         } else if (existing->isDict() && e.isDict()) {
             for (auto& sub : e.dict->entries_) addEntry(*existing->dict, std::move(sub));
         } else {
@@ -396,10 +436,10 @@ public:
 
     // Replaces or appends, without merging (Dictionary::set, setDict).
     static void replaceEntry(Dictionary& d, Entry e) {
-        if (Entry* existing = find(d, e.keyword))
+        if (Entry* existing = d.find(std::string_view(e.keyword)))
             *existing = std::move(e);
         else
-            d.entries_.push_back(std::move(e));
+            d.append(std::move(e));
     }
 
 private:
@@ -411,7 +451,7 @@ private:
             switch (t.kind) {
             case Lex::End:
                 if (open)
-                    throw InputError(t.where, "missing '}' at end of file: dictionary '" + dict.name_ +
+                    throw InputError(t.where, "missing '}' at end of file: dictionary '" + dict.name() +
                                                   "' opened at " + locationText(open->where) +
                                                   " is not closed");
                 return;
@@ -439,15 +479,14 @@ private:
     void parseEntry(Lexer& lexer, Dictionary& dict, const LexToken& keyword) {
         if (lexer.peek().kind == Lex::LBrace) {
             const LexToken open = lexer.next();
-            auto sub = std::make_shared<Dictionary>(dict.name_ + "." + keyword.text, keyword.where);
+            auto sub = makeDictionary(childName(dict, keyword.text), keyword.where);
             scopes_.push_back(sub.get());
             parseEntries(lexer, *sub, &open);
             scopes_.pop_back();
             addEntry(dict, Entry{keyword.text, keyword.where, {}, sub});
             return;
         }
-        std::vector<LexToken> raw = readValue(lexer, keyword, false);
-        addEntry(dict, makeEntry(keyword, std::move(raw), dict));
+        addEntry(dict, makeEntry(keyword, readValue(lexer, keyword, false), dict));
     }
 
     // The raw tokens of a value, up to and including the ';' (which is consumed, not returned).
@@ -460,7 +499,7 @@ private:
         std::vector<SourceLocation> openLists;
         int previousLine = keyword.endLine;
         for (;;) {
-            const LexToken t = lexer.peek();
+            const LexToken& t = lexer.peek(); // valid until lexer.next()
             const bool inList = !openLists.empty();
             auto unclosedList = [&] {
                 return InputError(t.where, "expected ')' to close the list opened at " +
@@ -475,8 +514,9 @@ private:
             if (!inList) {
                 if (t.kind == Lex::Semicolon || (untilEnd && t.kind == Lex::End)) {
                     if (raw.empty()) throw InputError(t.where, "missing value for '" + kw + "' before " + describe(t), kw);
+                    const Lex end = t.kind;
                     lexer.next();
-                    if (untilEnd && t.kind == Lex::Semicolon && lexer.peek().kind != Lex::End)
+                    if (untilEnd && end == Lex::Semicolon && lexer.peek().kind != Lex::End)
                         throw InputError(lexer.peek().where, "unexpected " + describe(lexer.peek()) +
                                                                  " after the value of '" + kw + "'", kw);
                     return raw;
@@ -515,20 +555,32 @@ private:
         if (raw.size() == 1 && raw.front().kind == Lex::Variable) {
             const Entry& source = resolve(raw.front());
             if (source.isDict()) {
-                e.dict = clone(*source.dict, dict.name_ + "." + keyword.text, keyword.where);
+                e.dict = clone(*source.dict, childName(dict, keyword.text), keyword.where);
                 return e;
             }
         }
-        for (const LexToken& t : raw) {
+        // Sized first: the value is allocated once.
+        std::vector<const Entry*> substituted(raw.size(), nullptr);
+        std::size_t size = 0;
+        for (std::size_t i = 0; i < raw.size(); ++i) {
+            const LexToken& t = raw[i];
             if (t.kind != Lex::Variable) {
-                e.tokens.push_back(toToken(t));
+                ++size;
                 continue;
             }
             const Entry& source = resolve(t);
             if (source.isDict())
                 throw InputError(t.where, "'$" + t.text + "' is a dictionary; it can only be the whole value of an entry ('" +
                                               keyword.text + " $" + t.text + ";')", keyword.text);
-            e.tokens.insert(e.tokens.end(), source.tokens.begin(), source.tokens.end());
+            substituted[i] = &source;
+            size += source.tokens.size();
+        }
+        e.tokens.reserve(size);
+        for (std::size_t i = 0; i < raw.size(); ++i) {
+            if (substituted[i])
+                e.tokens.insert(e.tokens.end(), substituted[i]->tokens.begin(), substituted[i]->tokens.end());
+            else
+                e.tokens.push_back(toToken(std::move(raw[i])));
         }
         return e;
     }
@@ -548,14 +600,19 @@ private:
     }
 
     // Looks `path` up in 'd': the keyword itself, else `a.b` as entry b of sub-dictionary a
-    // (recursively). Marks what it finds as used (the file itself uses it).
-    static const Entry* lookupPath(Dictionary& d, const std::string& path) {
-        if (Entry* e = find(d, path)) {
-            d.used_.insert(path);
+    // (recursively). Marks what it finds as used (the file itself uses it). The prefixes before
+    // each '.' are hashed incrementally: one pass over the path per dictionary searched.
+    static const Entry* lookupPath(Dictionary& d, std::string_view path) {
+        if (Entry* e = d.find(path)) {
+            d.used_.emplace(path);
             return e;
         }
-        for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.', dot + 1)) {
-            Entry* head = find(d, path.substr(0, dot));
+        std::size_t prefixHash = detail::KeywordHash::seed;
+        std::size_t hashedLength = 0;
+        for (auto dot = path.find('.'); dot != std::string_view::npos; dot = path.find('.', dot + 1)) {
+            prefixHash = detail::KeywordHash::extend(prefixHash, path.substr(hashedLength, dot - hashedLength));
+            hashedLength = dot;
+            Entry* head = d.find(detail::HashedKeyword{path.substr(0, dot), prefixHash});
             if (!head || !head->isDict()) continue;
             if (const Entry* found = lookupPath(*head->dict, path.substr(dot + 1))) {
                 d.used_.insert(head->keyword);
@@ -613,14 +670,35 @@ private:
 // Dictionary
 
 Dictionary::Dictionary(std::string scopedName, SourceLocation where)
-    : name_(std::move(scopedName)), where_(std::move(where)) {}
+    : name_(std::make_shared<const detail::ScopedName>(nullptr, std::move(scopedName))), where_(std::move(where)) {}
+
+const std::string& Dictionary::name() const {
+    static const std::string unnamed;
+    return name_ ? name_->text() : unnamed;
+}
+
+template <class Key>
+const Entry* Dictionary::find(const Key& keyword) const {
+    const auto it = index_.find(keyword);
+    return it == index_.end() ? nullptr : &entries_[it->second];
+}
+
+template <class Key>
+Entry* Dictionary::find(const Key& keyword) {
+    return const_cast<Entry*>(std::as_const(*this).find(keyword));
+}
+
+void Dictionary::append(Entry entry) {
+    index_.emplace(entry.keyword, entries_.size());
+    entries_.push_back(std::move(entry));
+}
 
 Dictionary Dictionary::fromFile(const fs::path& file) {
     const std::string path = file.string();
     std::string text;
     if (!readWholeFile(file, text)) throw InputError({path, 0, 0}, "cannot open file");
     Dictionary d(file.filename().string(), {path, 0, 0});
-    DictionaryParser({&d}).parseText(d, text, path);
+    DictionaryParser({&d}).parseText(d, std::move(text), path);
     return d;
 }
 
@@ -646,11 +724,7 @@ std::vector<std::string> Dictionary::keywords() const {
     return out;
 }
 
-const Entry* Dictionary::findEntry(const std::string& keyword) const {
-    for (const auto& e : entries_)
-        if (e.keyword == keyword) return &e;
-    return nullptr;
-}
+const Entry* Dictionary::findEntry(const std::string& keyword) const { return find(std::string_view(keyword)); }
 
 SourceLocation Dictionary::locationOf(const std::string& keyword) const {
     const Entry* e = findEntry(keyword);
@@ -660,7 +734,7 @@ SourceLocation Dictionary::locationOf(const std::string& keyword) const {
 const Entry& Dictionary::requireEntry(const std::string& keyword) const {
     markUsed(keyword);
     if (const Entry* e = findEntry(keyword)) return *e;
-    std::string message = "keyword '" + keyword + "' is missing in " + name_;
+    std::string message = "keyword '" + keyword + "' is missing in " + name();
     const std::string suggestion = closestMatch(keyword, keywords());
     if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
     throw InputError(where_, message, keyword);
@@ -694,7 +768,7 @@ void Dictionary::checkAllKeywordsUsed() const {
     for (const auto& e : entries_) {
         if (e.keyword == headerKeyword || used_.count(e.keyword)) continue;
         const std::vector<std::string> valid(used_.begin(), used_.end()); // std::set: sorted
-        std::string message = "unknown keyword '" + e.keyword + "' in " + name_;
+        std::string message = "unknown keyword '" + e.keyword + "' in " + name();
         const std::string suggestion = closestMatch(e.keyword, valid);
         if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
         message += "; valid keywords: (" + join(valid) + ")";
@@ -715,7 +789,7 @@ std::string Dictionary::getWordOrDefault(const std::string& keyword, const std::
                                          const std::string& defaultValue) const {
     markUsed(keyword);
     if (found(keyword)) return getWord(keyword, allowed);
-    logDefaultOnce(name_ + "." + keyword, isWord(defaultValue) ? defaultValue : quote(defaultValue));
+    logDefaultOnce(name() + "." + keyword, isWord(defaultValue) ? defaultValue : quote(defaultValue));
     return defaultValue;
 }
 
@@ -731,12 +805,16 @@ void Dictionary::setDict(const std::string& keyword, const Dictionary& dict) {
     if (!isWord(keyword))
         throw InputError({"<override>", 0, 0}, "invalid keyword '" + keyword +
                                                    "' (letters, digits and _ . : < > - + only)");
-    auto copy = DictionaryParser::clone(dict, name_ + "." + keyword, dict.where());
+    auto copy = DictionaryParser::clone(dict, DictionaryParser::childName(*this, keyword), dict.where());
     DictionaryParser::replaceEntry(*this, Entry{keyword, dict.where(), {}, copy});
 }
 
 void Dictionary::remove(const std::string& keyword) {
-    std::erase_if(entries_, [&](const Entry& e) { return e.keyword == keyword; });
+    const auto it = index_.find(std::string_view(keyword));
+    if (it == index_.end()) return;
+    entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(it->second));
+    index_.clear();
+    for (std::size_t i = 0; i < entries_.size(); ++i) index_.emplace(entries_[i].keyword, i);
 }
 
 std::string Dictionary::toString(int indent) const {
@@ -1002,7 +1080,7 @@ template <> std::string formatValue<Vec3>(const Vec3& v) {
 template <class T>
 std::string formatList(const std::vector<T>& values) {
     std::string out = "(";
-    for (std::size_t i = 0; i < values.size(); ++i) out += (i ? " " : "") + formatValue(values[i]);
+    for (std::size_t i = 0; i < values.size(); ++i) out.append(i ? " " : "").append(formatValue(values[i]));
     return out + ")";
 }
 template <> std::string formatValue<std::vector<double>>(const std::vector<double>& v) { return formatList(v); }
@@ -1020,7 +1098,7 @@ template <class T>
 T Dictionary::getOrDefault(const std::string& keyword, const T& defaultValue) const {
     markUsed(keyword);
     if (found(keyword)) return get<T>(keyword);
-    logDefaultOnce(name_ + "." + keyword, formatValue(defaultValue));
+    logDefaultOnce(name() + "." + keyword, formatValue(defaultValue));
     return defaultValue;
 }
 

@@ -341,6 +341,12 @@ dotted $U.x;
     EXPECT_EQ(d.get<int>("dotted"), 4); // a keyword containing '.' is found as a whole first
 }
 
+TEST(DictionarySubstitution, ScopedNameFindsSubDictionariesWhoseKeywordHasADot) {
+    // "a.b" is tried as a keyword after "a" (the prefixes are hashed incrementally)
+    const Dictionary d = parse("a.b { c { d 5; } }\nx $a.b.c.d;\n");
+    EXPECT_EQ(d.get<int>("x"), 5);
+}
+
 TEST(DictionarySubstitution, DictionaryAsValueIsCopied) {
     Dictionary d = parse(R"(
 wall { type container; layers 3; }
@@ -663,6 +669,22 @@ TEST(DictionaryModify, SetDictCopiesAndRenamesAndRemoveDeletes) {
     EXPECT_EQ(d.keywords(), (std::vector<std::string>{"b", "sub"}));
 }
 
+TEST(DictionaryModify, RemoveKeepsTheOtherKeywordsFindable) {
+    Dictionary d = parse("a 1; b 2; c 3; d 4;");
+    d.remove("b");
+    EXPECT_FALSE(d.found("b"));
+    EXPECT_EQ(d.get<int>("c"), 3);
+    EXPECT_EQ(d.get<int>("d"), 4);
+    d.set("b", "5");
+    EXPECT_EQ(d.keywords(), (std::vector<std::string>{"a", "c", "d", "b"}));
+    EXPECT_EQ(d.get<int>("b"), 5);
+    Dictionary copy = d;
+    copy.remove("a");
+    EXPECT_TRUE(d.found("a"));
+    EXPECT_EQ(copy.get<int>("d"), 4);
+    EXPECT_EQ(copy.get<int>("b"), 5);
+}
+
 TEST(DictionaryWrite, ToStringWritesOpenFoamSyntax) {
     const Dictionary d = parse("a 1;\ng (0 -9.81 0);\ns \"x y\";\nsub { t w; }\n");
     EXPECT_EQ(d.toString(),
@@ -707,6 +729,27 @@ sphSchemes
     EXPECT_EQ(back.subDict("extra").get<int>("x"), 1);
     EXPECT_TRUE(back.isDict("FoamFile"));
     EXPECT_EQ(back.keywords(), d.keywords());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Limits: many keywords are parsed in linear time.
+
+TEST(DictionaryLimits, TwoHundredThousandKeywordsParseAndAreFound) {
+    // Parsing and lookups are linear (they were quadratic: 100k keywords took a minute); times are
+    // measured outside the tests, never asserted.
+    constexpr int n = 200000;
+    std::string text;
+    for (int i = 0; i < n; ++i) text += "key" + std::to_string(i) + " " + std::to_string(i) + ";\n";
+    text += "key7 -7;\nlast $key199999;\n";
+    const Dictionary d = parse(text);
+    const std::vector<std::string> keywords = d.keywords();
+    ASSERT_EQ(keywords.size(), std::size_t(n) + 1);
+    EXPECT_EQ(keywords[7], "key7"); // a duplicate keeps the place of the first
+    EXPECT_EQ(keywords.back(), "last");
+    for (int i = 0; i < n; ++i) ASSERT_EQ(d.get<int>(keywords[std::size_t(i)]), i == 7 ? -7 : i) << keywords[std::size_t(i)];
+    EXPECT_EQ(d.get<int>("last"), n - 1);
+    EXPECT_NO_THROW(d.checkAllKeywordsUsed());
+    EXPECT_CONTAINS(errorOf([&] { d.get<int>("key200000"); }), "keyword 'key200000' is missing in testDict");
 }
 
 // ---------------------------------------------------------------------------------------------
