@@ -18,6 +18,7 @@
 #include <iomanip>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -30,7 +31,11 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string headerKeyword = "FoamFile";
+
+// Bounds on what one dictionary may hold (see Dictionary.hpp). Sub-dictionaries are parsed
+// recursively, so their nesting bounds the stack (10,000 levels overflowed it).
 constexpr int maxIncludeDepth = 32;
+constexpr std::size_t maxNestingLevels = 256;
 constexpr int keywordWidth = 16; // toString() pads keywords to this width, as OpenFOAM does
 
 bool isWordChar(char c) {
@@ -377,9 +382,7 @@ public:
         if (lexer.peek().kind == Lex::LBrace) {
             const LexToken open = lexer.next();
             auto sub = makeDictionary(childName(owner, keyword), where);
-            scopes_.push_back(sub.get());
-            parseEntries(lexer, *sub, &open);
-            scopes_.pop_back();
+            parseSubDictionary(lexer, *sub, open, keyword);
             if (lexer.peek().kind == Lex::Semicolon) lexer.next();
             const LexToken& rest = lexer.peek();
             if (rest.kind != Lex::End)
@@ -408,14 +411,32 @@ public:
         return d;
     }
 
+    // For a copy made by `$dict` while parsing: the depth of the copy itself (that of the entry
+    // it becomes) and the variable, to hold the copy to maxNestingLevels.
+    struct CopyLimits {
+        std::size_t level;
+        const LexToken& variable;
+        const std::string& keyword;
+    };
+
     // Deep copy named 'name' (sub-dictionaries renamed below it); lookup marks are not copied.
-    static std::shared_ptr<Dictionary> clone(const Dictionary& source, Name name, const SourceLocation& where) {
+    static std::shared_ptr<Dictionary> clone(const Dictionary& source, Name name, const SourceLocation& where,
+                                             const CopyLimits* limits = nullptr) {
+        if (limits && limits->level > maxNestingLevels)
+            throw InputError(limits->variable.where, "dictionaries nested deeper than " +
+                                                         std::to_string(maxNestingLevels) + " levels (copying '$" +
+                                                         limits->variable.text + "' here)",
+                             limits->keyword);
         auto copy = makeDictionary(std::move(name), where);
         copy->entries_.reserve(source.entries_.size());
         copy->index_.reserve(source.entries_.size());
         for (const Entry& e : source.entries_) {
             Entry c{e.keyword, e.where, e.tokens, nullptr};
-            if (e.isDict()) c.dict = clone(*e.dict, childName(*copy, e.keyword), e.dict->where_);
+            if (e.isDict()) {
+                std::optional<CopyLimits> deeper;
+                if (limits) deeper.emplace(CopyLimits{limits->level + 1, limits->variable, limits->keyword});
+                c.dict = clone(*e.dict, childName(*copy, e.keyword), e.dict->where_, deeper ? &*deeper : nullptr);
+            }
             copy->append(std::move(c));
         }
         return copy;
@@ -475,14 +496,23 @@ private:
         }
     }
 
+    // The body of a sub-dictionary, after its '{'. Sub-dictionaries are parsed recursively, so
+    // their depth is bounded (the stack overflowed at some thousands).
+    void parseSubDictionary(Lexer& lexer, Dictionary& sub, const LexToken& open, const std::string& keyword) {
+        if (scopes_.size() > maxNestingLevels) // scopes_ holds the enclosing dictionaries
+            throw InputError(open.where, "dictionaries nested deeper than " + std::to_string(maxNestingLevels) +
+                                             " levels", keyword);
+        scopes_.push_back(&sub);
+        parseEntries(lexer, sub, &open);
+        scopes_.pop_back();
+    }
+
     // `keyword value...;` or `keyword { ... }`
     void parseEntry(Lexer& lexer, Dictionary& dict, const LexToken& keyword) {
         if (lexer.peek().kind == Lex::LBrace) {
             const LexToken open = lexer.next();
             auto sub = makeDictionary(childName(dict, keyword.text), keyword.where);
-            scopes_.push_back(sub.get());
-            parseEntries(lexer, *sub, &open);
-            scopes_.pop_back();
+            parseSubDictionary(lexer, *sub, open, keyword.text);
             addEntry(dict, Entry{keyword.text, keyword.where, {}, sub});
             return;
         }
@@ -534,6 +564,8 @@ private:
                 if (inList) throw unclosedList();
                 throw missingSemicolon();
             case Lex::Open:
+                if (openLists.size() >= maxNestingLevels)
+                    throw InputError(t.where, "lists nested deeper than " + std::to_string(maxNestingLevels) + " levels", kw);
                 openLists.push_back(t.where);
                 break;
             case Lex::Close:
@@ -555,7 +587,8 @@ private:
         if (raw.size() == 1 && raw.front().kind == Lex::Variable) {
             const Entry& source = resolve(raw.front());
             if (source.isDict()) {
-                e.dict = clone(*source.dict, childName(dict, keyword.text), keyword.where);
+                const CopyLimits limits{scopes_.size(), raw.front(), keyword.text};
+                e.dict = clone(*source.dict, childName(dict, keyword.text), keyword.where, &limits);
                 return e;
             }
         }
@@ -595,7 +628,10 @@ private:
         if (after.kind != Lex::Semicolon)
             throw InputError(after.where, "expected ';' after '$" + variable.text + "', found " + describe(after));
         lexer.next();
-        auto copy = clone(*source.dict, dict.name_, dict.where_);
+        // the copy stands at the level of 'dict', which receives its entries; no keyword to name
+        static const std::string noKeyword;
+        const CopyLimits limits{scopes_.size() - 1, variable, noKeyword};
+        auto copy = clone(*source.dict, dict.name_, dict.where_, &limits);
         for (auto& e : copy->entries_) addEntry(dict, std::move(e));
     }
 

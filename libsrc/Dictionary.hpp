@@ -11,6 +11,9 @@
 // ends on its line: a value token on a new line is reported as a missing ';'. Every parse error
 // throws InputError naming file:line:column.
 //
+// Bounds, so that no input can crash the solver (each is an InputError): sub-dictionaries and
+// lists nest at most 256 levels deep (a copied `$dict` counts at its new depth), #include files
+// at most 32.
 // Parsing and lookups take time linear in the input: keywords are hashed.
 //
 // Lookups are typed. A required keyword that is missing, or a value of the wrong type, throws

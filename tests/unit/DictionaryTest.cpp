@@ -732,7 +732,59 @@ sphSchemes
 }
 
 // ---------------------------------------------------------------------------------------------
-// Limits: many keywords are parsed in linear time.
+// Limits: nesting is bounded and fails with an InputError, never a crash; many keywords are
+// parsed in linear time.
+
+namespace {
+// 'levels' nested sub-dictionaries "d{d{...", 'inner' in the innermost, all closed.
+std::string nestedDictionaries(int levels, const std::string& inner) {
+    std::string text;
+    for (int i = 0; i < levels; ++i) text += "d{";
+    return text + inner + std::string(static_cast<std::size_t>(levels), '}');
+}
+
+const Dictionary& innermost(const Dictionary& d, int levels) {
+    const Dictionary* inner = &d;
+    for (int i = 0; i < levels; ++i) inner = &inner->subDict("d");
+    return *inner;
+}
+} // namespace
+
+TEST(DictionaryLimits, DeeplyNestedDictionariesAreAnErrorNotAStackOverflow) {
+    // 10,000 levels overflowed the stack (exit 139, no message). The 257th '{' is at column 514.
+    std::string text;
+    for (int i = 0; i < 10000; ++i) text += "d{";
+    EXPECT_EQ(errorOf([&] { parse(text); }),
+              testFile + ":1:514: error: dictionaries nested deeper than 256 levels (keyword 'd')");
+}
+
+TEST(DictionaryLimits, DictionariesMayNest256Levels) {
+    const Dictionary d = parse(nestedDictionaries(256, "x 1;"));
+    EXPECT_EQ(innermost(d, 256).get<int>("x"), 1);
+    EXPECT_CONTAINS(errorOf([&] { parse(nestedDictionaries(257, "x 1;")); }),
+                    ":1:514: error: dictionaries nested deeper than 256 levels");
+}
+
+TEST(DictionaryLimits, DeeplyNestedListsAreAnError) {
+    EXPECT_EQ(errorOf([&] { parse("v " + std::string(10000, '(') + ";\n"); }),
+              testFile + ":1:259: error: lists nested deeper than 256 levels (keyword 'v')");
+    const Dictionary d = parse("v " + std::string(256, '(') + "1" + std::string(256, ')') + ";\n");
+    EXPECT_EQ(d.findEntry("v")->tokens.size(), 513u);
+}
+
+TEST(DictionaryLimits, CopiedDictionariesCountAtTheirNewDepth) {
+    // 'src' spans 200 levels; copied 101 levels down it would reach level 300
+    const std::string src = "src{" + nestedDictionaries(199, "x 1;") + "}\n";
+    EXPECT_EQ(errorOf([&] { parse(src + nestedDictionaries(100, "copy $src;")); }),
+              testFile + ":2:206: error: dictionaries nested deeper than 256 levels (copying '$src' here) "
+                         "(keyword 'copy')");
+    EXPECT_EQ(errorOf([&] { parse(src + nestedDictionaries(100, "$src;")); }),
+              testFile + ":2:201: error: dictionaries nested deeper than 256 levels (copying '$src' here)");
+    // 51 + 199 = 250 levels (the copy) and 50 + 199 (the merge) are fine
+    const Dictionary d = parse(src + nestedDictionaries(50, "copy $src; $src;"));
+    EXPECT_EQ(innermost(innermost(d, 50).subDict("copy"), 199).get<int>("x"), 1);
+    EXPECT_EQ(innermost(d, 249).get<int>("x"), 1);
+}
 
 TEST(DictionaryLimits, TwoHundredThousandKeywordsParseAndAreFound) {
     // Parsing and lookups are linear (they were quadratic: 100k keywords took a minute); times are
