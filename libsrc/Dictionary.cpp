@@ -33,9 +33,12 @@ namespace {
 const std::string headerKeyword = "FoamFile";
 
 // Bounds on what one dictionary may hold (see Dictionary.hpp). Sub-dictionaries are parsed
-// recursively, so their nesting bounds the stack (10,000 levels overflowed it).
+// recursively, so their nesting bounds the stack (10,000 levels overflowed it); the token bound
+// stops `$name` doubling (`b ($a $a); c ($b $b); ...`) long before memory runs out.
 constexpr int maxIncludeDepth = 32;
 constexpr std::size_t maxNestingLevels = 256;
+constexpr std::size_t maxTokens = 10'000'000;
+constexpr std::uintmax_t maxTotalFileBytes = std::uintmax_t(256) << 20;
 constexpr int keywordWidth = 16; // toString() pads keywords to this width, as OpenFOAM does
 
 bool isWordChar(char c) {
@@ -370,6 +373,7 @@ public:
     explicit DictionaryParser(std::vector<Dictionary*> scopes) : scopes_(std::move(scopes)) {}
 
     void parseText(Dictionary& into, std::string text, const std::string& file) {
+        bytesRead_ += text.size();
         Lexer lexer(std::move(text), file);
         parseEntries(lexer, into, nullptr);
     }
@@ -412,8 +416,9 @@ public:
     }
 
     // For a copy made by `$dict` while parsing: the depth of the copy itself (that of the entry
-    // it becomes) and the variable, to hold the copy to maxNestingLevels.
+    // it becomes) and the variable, to hold the copy to maxNestingLevels and maxTokens.
     struct CopyLimits {
+        DictionaryParser& parser;
         std::size_t level;
         const LexToken& variable;
         const std::string& keyword;
@@ -431,10 +436,13 @@ public:
         copy->entries_.reserve(source.entries_.size());
         copy->index_.reserve(source.entries_.size());
         for (const Entry& e : source.entries_) {
+            if (limits)
+                limits->parser.countTokens(1 + e.tokens.size(), limits->variable.where, limits->keyword,
+                                           [&] { return "copying '$" + limits->variable.text + "'"; });
             Entry c{e.keyword, e.where, e.tokens, nullptr};
             if (e.isDict()) {
                 std::optional<CopyLimits> deeper;
-                if (limits) deeper.emplace(CopyLimits{limits->level + 1, limits->variable, limits->keyword});
+                if (limits) deeper.emplace(CopyLimits{limits->parser, limits->level + 1, limits->variable, limits->keyword});
                 c.dict = clone(*e.dict, childName(*copy, e.keyword), e.dict->where_, deeper ? &*deeper : nullptr);
             }
             copy->append(std::move(c));
@@ -464,6 +472,19 @@ public:
     }
 
 private:
+    // Counts 'n' more tokens (keywords and value tokens) against maxTokens; 'cause' (called only
+    // for the error) says what adds them, e.g. "substituting '$b'".
+    template <class Cause>
+    void countTokens(std::size_t n, const SourceLocation& where, const std::string& keyword, Cause cause) {
+        if (n <= maxTokens - tokenCount_) {
+            tokenCount_ += n;
+            return;
+        }
+        throw InputError(where, cause() + " makes the dictionary exceed " + std::to_string(maxTokens) +
+                                    " tokens (keywords and values, after #include and $substitution)",
+                         keyword);
+    }
+
     // Reads entries into 'dict' until the '}' matching 'open' (or end of input when 'open' is
     // null, i.e. at file level).
     void parseEntries(Lexer& lexer, Dictionary& dict, const LexToken* open) {
@@ -509,6 +530,7 @@ private:
 
     // `keyword value...;` or `keyword { ... }`
     void parseEntry(Lexer& lexer, Dictionary& dict, const LexToken& keyword) {
+        countTokens(1, keyword.where, keyword.text, [&] { return "the keyword '" + keyword.text + "'"; });
         if (lexer.peek().kind == Lex::LBrace) {
             const LexToken open = lexer.next();
             auto sub = makeDictionary(childName(dict, keyword.text), keyword.where);
@@ -575,6 +597,7 @@ private:
             default:
                 break;
             }
+            countTokens(1, t.where, kw, [&] { return "the value of '" + kw + "'"; });
             previousLine = t.endLine;
             raw.push_back(lexer.next());
         }
@@ -587,12 +610,13 @@ private:
         if (raw.size() == 1 && raw.front().kind == Lex::Variable) {
             const Entry& source = resolve(raw.front());
             if (source.isDict()) {
-                const CopyLimits limits{scopes_.size(), raw.front(), keyword.text};
+                const CopyLimits limits{*this, scopes_.size(), raw.front(), keyword.text};
                 e.dict = clone(*source.dict, childName(dict, keyword.text), keyword.where, &limits);
                 return e;
             }
         }
-        // Sized first: the value is allocated once.
+        // Sized first: the token bound is checked before anything is copied, and the value is
+        // allocated once.
         std::vector<const Entry*> substituted(raw.size(), nullptr);
         std::size_t size = 0;
         for (std::size_t i = 0; i < raw.size(); ++i) {
@@ -605,6 +629,7 @@ private:
             if (source.isDict())
                 throw InputError(t.where, "'$" + t.text + "' is a dictionary; it can only be the whole value of an entry ('" +
                                               keyword.text + " $" + t.text + ";')", keyword.text);
+            countTokens(source.tokens.size(), t.where, keyword.text, [&] { return "substituting '$" + t.text + "'"; });
             substituted[i] = &source;
             size += source.tokens.size();
         }
@@ -630,7 +655,7 @@ private:
         lexer.next();
         // the copy stands at the level of 'dict', which receives its entries; no keyword to name
         static const std::string noKeyword;
-        const CopyLimits limits{scopes_.size() - 1, variable, noKeyword};
+        const CopyLimits limits{*this, scopes_.size() - 1, variable, noKeyword};
         auto copy = clone(*source.dict, dict.name_, dict.where_, &limits);
         for (auto& e : copy->entries_) addEntry(dict, std::move(e));
     }
@@ -692,6 +717,10 @@ private:
         if (includeDepth_ >= maxIncludeDepth)
             throw InputError(directive.where, "#include nested more than " + std::to_string(maxIncludeDepth) +
                                                   " deep (does '" + file.string() + "' include itself?)");
+        if (text.size() > maxTotalFileBytes - std::min(bytesRead_, maxTotalFileBytes))
+            throw InputError(directive.where, "including '" + file.string() + "' makes the files read for this dictionary exceed " +
+                                                  std::to_string(maxTotalFileBytes >> 20) + " MiB (repeated #includes count each time)");
+        bytesRead_ += text.size();
         ++includeDepth_;
         Lexer included(std::move(text), file.string());
         parseEntries(included, dict, nullptr);
@@ -700,6 +729,8 @@ private:
 
     std::vector<Dictionary*> scopes_;
     int includeDepth_ = 0;
+    std::size_t tokenCount_ = 0;     // against maxTokens
+    std::uintmax_t bytesRead_ = 0;   // against maxTotalFileBytes
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -11,9 +11,11 @@
 // ends on its line: a value token on a new line is reported as a missing ';'. Every parse error
 // throws InputError naming file:line:column.
 //
-// Bounds, so that no input can crash the solver (each is an InputError): sub-dictionaries and
-// lists nest at most 256 levels deep (a copied `$dict` counts at its new depth), #include files
-// at most 32.
+// Bounds, so that no input can crash the solver or exhaust its memory (each is an InputError):
+// sub-dictionaries and lists nest at most 256 levels deep (a copied `$dict` counts at its new
+// depth), #include files at most 32; the files read for one dictionary (#include repeats
+// counted) add up to at most 256 MiB; one dictionary holds at most 10^7
+// tokens (keywords and value tokens, after #include and `$name` substitution; roughly 1 GB).
 // Parsing and lookups take time linear in the input: keywords are hashed.
 //
 // Lookups are typed. A required keyword that is missing, or a value of the wrong type, throws

@@ -732,8 +732,8 @@ sphSchemes
 }
 
 // ---------------------------------------------------------------------------------------------
-// Limits: nesting is bounded and fails with an InputError, never a crash; many keywords are
-// parsed in linear time.
+// Limits: nesting, size, expansion and many keywords are bounded and fail with an InputError,
+// never a crash, a hang or std::bad_alloc.
 
 namespace {
 // 'levels' nested sub-dictionaries "d{d{...", 'inner' in the innermost, all closed.
@@ -802,6 +802,50 @@ TEST(DictionaryLimits, TwoHundredThousandKeywordsParseAndAreFound) {
     EXPECT_EQ(d.get<int>("last"), n - 1);
     EXPECT_NO_THROW(d.checkAllKeywordsUsed());
     EXPECT_CONTAINS(errorOf([&] { d.get<int>("key200000"); }), "keyword 'key200000' is missing in testDict");
+}
+
+TEST(DictionaryLimits, SubstitutionThatKeepsDoublingStopsAtTheTokenBound) {
+    // a0 x; a1 ($a0 $a0); a2 ($a1 $a1); ...: 40 levels would be 3·2^40 tokens, which ended in
+    // std::bad_alloc. (A short file name keeps the locations of the copied tokens small.)
+    std::string text = "a0 x;\n";
+    for (int i = 1; i <= 40; ++i) {
+        const std::string previous = "$a" + std::to_string(i - 1), current = "a" + std::to_string(i);
+        text.append(current).append(" (").append(previous).append(" ").append(previous).append(");\n");
+    }
+    EXPECT_EQ(errorOf([&] { Dictionary::fromString(text, "doubling"); }),
+              "doubling:22:11: error: substituting '$a20' makes the dictionary exceed 10000000 tokens (keywords "
+              "and values, after #include and $substitution) (keyword 'a21')");
+    // below the bound the same substitutions are made in full
+    const std::size_t cut = text.find("a16 ");
+    const Dictionary d = Dictionary::fromString(text.substr(0, cut), "doubling");
+    EXPECT_EQ(d.findEntry("a15")->tokens.size(), 3u * (1u << 15) - 2u);
+}
+
+TEST(DictionaryLimits, CopiesOfDictionariesStopAtTheTokenBound) {
+    // each d<i> holds two copies of d<i-1>: 2^i copies of a 1000-number list
+    std::string text = "d0 { v (";
+    for (int i = 0; i < 1000; ++i) text += " 1";
+    text += "); }\n";
+    for (int i = 1; i <= 20; ++i) {
+        const std::string previous = "$d" + std::to_string(i - 1), current = "d" + std::to_string(i);
+        text.append(current).append(" { a ").append(previous).append("; b ").append(previous).append("; }\n");
+    }
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromString(text, "copies"); }),
+                    "error: copying '$d12' makes the dictionary exceed 10000000 tokens");
+}
+
+TEST(DictionaryFiles, RepeatedIncludesAreBoundedInTotal) {
+    TempDir dir;
+    dir.writeFile("system/comment", "// " + std::string(std::size_t(60) << 20, '-') + "\n"); // 60 MiB, no entry
+    std::string text;
+    for (int i = 0; i < 5; ++i) text += "#include \"comment\"\n";
+    const fs::path file = dir.writeFile("system/controlDict", text + "a 1;\n");
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromFile(file); }),
+                    file.string() + ":5:1: error: including '");
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromFile(file); }),
+                    "comment' makes the files read for this dictionary exceed 256 MiB (repeated #includes count each time)");
+    const fs::path four = dir.writeFile("system/four", text.substr(0, text.size() / 5 * 4) + "a 1;\n");
+    EXPECT_EQ(Dictionary::fromFile(four).get<int>("a"), 1);
 }
 
 // ---------------------------------------------------------------------------------------------
