@@ -135,6 +135,18 @@ std::string describe(const LexToken& t) {
     return "?";
 }
 
+// Length of the UTF-8 sequence starting with byte 'lead' (1 for ASCII), 0 for a byte that cannot
+// start one.
+int utf8Length(unsigned char lead) {
+    if (lead < 0x80) return 1;
+    if (lead >= 0xC2 && lead <= 0xDF) return 2;
+    if (lead >= 0xE0 && lead <= 0xEF) return 3;
+    if (lead >= 0xF0 && lead <= 0xF4) return 4;
+    return 0;
+}
+
+bool isUtf8Continuation(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
 class Lexer {
 public:
     Lexer(std::string text, std::string file) : text_(std::move(text)), file_(std::move(file)) {
@@ -142,6 +154,19 @@ public:
     }
 
     const std::string& file() const { return file_; }
+
+    // While a keyword's value is read, errors of the lexer name that keyword too: a stray
+    // character or '0,02' is then reported with the keyword it spoils.
+    class ValueOf {
+    public:
+        ValueOf(Lexer& lexer, const std::string& keyword) : lexer_(lexer) { lexer_.keyword_ = keyword; }
+        ~ValueOf() { lexer_.keyword_.clear(); }
+        ValueOf(const ValueOf&) = delete;
+        ValueOf& operator=(const ValueOf&) = delete;
+
+    private:
+        Lexer& lexer_;
+    };
 
     const LexToken& peek() {
         if (!peeked_) {
@@ -163,14 +188,59 @@ private:
     char following() const { return pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0'; }
     SourceLocation here() const { return {file_, line_, column_}; }
 
+    [[noreturn]] void fail(const SourceLocation& where, const std::string& message) const {
+        throw InputError(where, message, keyword_);
+    }
+
+    // Columns count characters: the continuation bytes of a UTF-8 character take no column.
     void advance() {
         if (text_[pos_] == '\n') {
             ++line_;
             column_ = 1;
-        } else {
+        } else if (!isUtf8Continuation(text_[pos_])) {
             ++column_;
         }
         ++pos_;
+    }
+
+    // "unexpected character ..." for the character at the current position, shown as itself when
+    // it is printable ASCII or valid UTF-8.
+    [[noreturn]] void unexpectedCharacter(const SourceLocation& where) const {
+        const auto lead = static_cast<unsigned char>(current());
+        if (lead == ',') fail(where, "unexpected character ',' (list elements are separated by spaces, not commas)");
+        if (std::isprint(lead)) fail(where, "unexpected character '" + std::string(1, current()) + "'");
+        const int length = utf8Length(lead);
+        if (length > 1 && pos_ + static_cast<std::size_t>(length) <= text_.size()) {
+            char32_t code = lead & (0xFF >> (length + 1));
+            bool valid = true;
+            for (int i = 1; i < length; ++i) {
+                valid = valid && isUtf8Continuation(text_[pos_ + i]);
+                code = (code << 6) | (static_cast<unsigned char>(text_[pos_ + i]) & 0x3F);
+            }
+            const char32_t smallest = length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+            valid = valid && code >= smallest && code <= 0x10FFFF && !(code >= 0xD800 && code <= 0xDFFF);
+            if (valid) {
+                std::ostringstream u;
+                u << "U+" << std::uppercase << std::hex << std::setw(4) << std::setfill('0') << std::uint32_t(code);
+                fail(where, "unexpected character '" + text_.substr(pos_, static_cast<std::size_t>(length)) + "' (" +
+                                u.str() + "; only comments and quoted strings may hold non-ASCII text)");
+            }
+        }
+        std::ostringstream hex;
+        hex << "byte 0x" << std::hex << std::setw(2) << std::setfill('0') << int(lead);
+        fail(where, "unexpected character " + hex.str() + (lead >= 0x80 ? " (not UTF-8 text)" : ""));
+    }
+
+    // A number written with a decimal comma, '0,02': the lexer is at the ','.
+    [[noreturn]] void decimalComma(const LexToken& number) {
+        const SourceLocation comma = here();
+        std::string written = number.text;
+        written += ',';
+        advance();
+        written += readWordChars();
+        if (!atEnd() && current() == ',') // '1,2,3': commas as list separators
+            fail(comma, "unexpected character ',' (list elements are separated by spaces, not commas)");
+        fail(number.where, "'" + written + "' is not a number (use a decimal point)");
     }
 
     void skipSpaceAndComments() {
@@ -186,7 +256,7 @@ private:
                 advance();
                 advance();
                 for (;;) {
-                    if (atEnd()) throw InputError(start, "unterminated comment: '/*' without a matching '*/'");
+                    if (atEnd()) fail(start, "unterminated comment: '/*' without a matching '*/'");
                     if (current() == '*' && following() == '/') {
                         advance();
                         advance();
@@ -237,7 +307,7 @@ private:
             advance();
             for (;;) {
                 if (atEnd() || current() == '\n')
-                    throw InputError(t.where, "unterminated string: missing closing '\"' on this line");
+                    fail(t.where, "unterminated string: missing closing '\"' on this line");
                 const char s = current();
                 if (s == '"') {
                     advance();
@@ -252,7 +322,7 @@ private:
             t.kind = Lex::Variable;
             advance();
             t.text = readWordChars();
-            if (t.text.empty()) throw InputError(t.where, "expected a keyword name after '$'");
+            if (t.text.empty()) fail(t.where, "expected a keyword name after '$'");
             break;
         case '#':
             t.kind = Lex::Directive;
@@ -262,24 +332,16 @@ private:
                 t.text += current();
                 advance();
             }
-            if (t.text == "#") throw InputError(t.where, "expected a directive name after '#' (e.g. #include)");
+            if (t.text == "#") fail(t.where, "expected a directive name after '#' (e.g. #include)");
             break;
         default:
-            if (!isWordChar(c)) {
-                const auto u = static_cast<unsigned char>(c);
-                std::string shown;
-                if (std::isprint(u)) {
-                    shown = "'" + std::string(1, c) + "'";
-                } else {
-                    std::ostringstream hex;
-                    hex << "byte 0x" << std::hex << std::setw(2) << std::setfill('0') << int(u);
-                    shown = hex.str();
-                }
-                throw InputError(t.where, "unexpected character " + shown);
-            }
+            if (!isWordChar(c)) unexpectedCharacter(t.where);
             t.text = readWordChars();
             double ignored = 0;
             t.kind = parseNumber(t.text, ignored) == NumberStatus::NotANumber ? Lex::Word : Lex::Number;
+            if (t.kind == Lex::Number && !atEnd() && current() == ',' &&
+                std::isdigit(static_cast<unsigned char>(following())))
+                decimalComma(t);
             break;
         }
         t.endLine = lastEndLine_ = line_;
@@ -296,6 +358,7 @@ private:
     int lastEndColumn_ = 1;
     LexToken lookahead_;
     bool peeked_ = false;
+    std::string keyword_; // whose value is being read (see ValueOf), or empty
 };
 
 Token toToken(LexToken t) {
@@ -383,10 +446,16 @@ public:
     Entry parseOverride(Dictionary& owner, const std::string& keyword, const std::string& valueText) {
         const SourceLocation where{"<override>", 0, 0};
         Lexer lexer(valueText, where.file);
-        if (lexer.peek().kind == Lex::LBrace) {
+        bool isDict = false;
+        {
+            Lexer::ValueOf value(lexer, keyword);
+            isDict = lexer.peek().kind == Lex::LBrace;
+        }
+        if (isDict) {
             const LexToken open = lexer.next();
             auto sub = makeDictionary(childName(owner, keyword), where);
             parseSubDictionary(lexer, *sub, open, keyword);
+            Lexer::ValueOf value(lexer, keyword);
             if (lexer.peek().kind == Lex::Semicolon) lexer.next();
             const LexToken& rest = lexer.peek();
             if (rest.kind != Lex::End)
@@ -531,7 +600,12 @@ private:
     // `keyword value...;` or `keyword { ... }`
     void parseEntry(Lexer& lexer, Dictionary& dict, const LexToken& keyword) {
         countTokens(1, keyword.where, keyword.text, [&] { return "the keyword '" + keyword.text + "'"; });
-        if (lexer.peek().kind == Lex::LBrace) {
+        bool isDict = false;
+        {
+            Lexer::ValueOf value(lexer, keyword.text);
+            isDict = lexer.peek().kind == Lex::LBrace;
+        }
+        if (isDict) {
             const LexToken open = lexer.next();
             auto sub = makeDictionary(childName(dict, keyword.text), keyword.where);
             parseSubDictionary(lexer, *sub, open, keyword.text);
@@ -547,6 +621,7 @@ private:
     // on a later line means the ';' is missing. (A list may start on the line after the keyword.)
     std::vector<LexToken> readValue(Lexer& lexer, const LexToken& keyword, bool untilEnd) {
         const std::string& kw = keyword.text;
+        const Lexer::ValueOf value(lexer, kw);
         std::vector<LexToken> raw;
         std::vector<SourceLocation> openLists;
         int previousLine = keyword.endLine;

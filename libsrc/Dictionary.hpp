@@ -9,7 +9,8 @@
 // keyword counts as used). A later duplicate keyword overrides the earlier one; a duplicate
 // dictionary is merged into the earlier one (OpenFOAM's default). Outside parentheses a value
 // ends on its line: a value token on a new line is reported as a missing ';'. Every parse error
-// throws InputError naming file:line:column.
+// throws InputError naming file:line:column (columns count UTF-8 characters, not bytes), and the
+// keyword when it happens in a keyword's value.
 //
 // Bounds, so that no input can crash the solver or exhaust its memory (each is an InputError):
 // sub-dictionaries and lists nest at most 256 levels deep (a copied `$dict` counts at its new

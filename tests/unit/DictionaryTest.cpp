@@ -907,6 +907,27 @@ const std::vector<BadInput> badInputs = {
     {"UnexpectedCharacter", "a 1;\nb = 2;\n", at + "2:3: error: unexpected character '='"},
     {"NumberAsKeyword", "1 2;\n", at + "1:1: error: expected a keyword, found '1'"},
     {"DollarWithoutName", "a $;\n", at + "1:3: error: expected a keyword name after '$'"},
+    // --- a value spoiled by a character: the error names the keyword too
+    {"DecimalComma", "endTime 0,02;\n", at + "1:9: error: '0,02' is not a number (use a decimal point) (keyword 'endTime')"},
+    {"DecimalCommaInList", "g (0 -9,81 0);\n", at + "1:6: error: '-9,81' is not a number (use a decimal point) (keyword 'g')"},
+    {"CommasBetweenListElements", "g (0,1,0);\n",
+     at + "1:5: error: unexpected character ',' (list elements are separated by spaces, not commas) (keyword 'g')"},
+    {"CommaAfterListElement", "g (0, -9.81, 0);\n",
+     at + "1:5: error: unexpected character ',' (list elements are separated by spaces, not commas) (keyword 'g')"},
+    {"NonAsciiCharacterInValue", "endTime 1.5\u00b5s;\n",
+     at + "1:12: error: unexpected character '\u00b5' (U+00B5; only comments and quoted strings may hold non-ASCII "
+          "text) (keyword 'endTime')"},
+    {"FourByteCharacterInValue", "a \U0001F30A;\n", at + "1:3: error: unexpected character '\U0001F30A' (U+1F30A;"},
+    {"InvalidUtf8ByteInValue", "endTime 1\xff;\n", at + "1:10: error: unexpected character byte 0xff (not UTF-8 text) (keyword 'endTime')"},
+    {"NonAsciiCharacterInKeyword", "endTim\u00e9 1;\n", at + "1:7: error: unexpected character '\u00e9' (U+00E9;"},
+    {"NonAsciiCharacterAtKeywordPosition", "a 1;\n\u00e9 2;\n", at + "2:1: error: unexpected character '\u00e9' (U+00E9; only comments and quoted strings may hold non-ASCII text)"},
+    {"UnterminatedStringInValueNamesTheKeyword", "name \"abc;\n",
+     at + "1:6: error: unterminated string: missing closing '\"' on this line (keyword 'name')"},
+    // --- columns count characters, not bytes
+    {"ColumnAfterUtf8Comment", "/* gr\u00f6\u00dfe */ endTime abc;\n", at + "1:21: error: expected a number for 'endTime', found word 'abc'",
+     [](Dictionary& d) { d.get<double>("endTime"); }},
+    {"ColumnAfterUtf8String", "title \"\u65e5\u672c \U0001F30A\"; x = 1;\n", at + "1:17: error: unexpected character '=' (keyword 'x')"},
+    {"EndOfFileColumnAfterUtf8", "a \"\u00e9\"\n", at + "1:6: error: expected ';' after the value of 'a', found end of file"},
     // --- directives
     {"UnknownDirective", "#inputMode merge\n", at + "1:1: error: unknown directive '#inputMode'"},
     {"IncludeWithoutQuotedName", "#include common\n", at + "1:10: error: expected a quoted file name after '#include'"},
