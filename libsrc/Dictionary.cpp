@@ -38,6 +38,7 @@ const std::string headerKeyword = "FoamFile";
 constexpr int maxIncludeDepth = 32;
 constexpr std::size_t maxNestingLevels = 256;
 constexpr std::size_t maxTokens = 10'000'000;
+constexpr std::uintmax_t maxFileBytes = std::uintmax_t(64) << 20;
 constexpr std::uintmax_t maxTotalFileBytes = std::uintmax_t(256) << 20;
 constexpr int keywordWidth = 16; // toString() pads keywords to this width, as OpenFOAM does
 
@@ -90,17 +91,46 @@ NumberStatus parseNumber(const std::string& text, double& value) {
     return NumberStatus::Ok;
 }
 
-// Regular files only (never /dev/zero or a FIFO: a dictionary must not hang the solver), and
-// at most 64 MiB.
-bool readWholeFile(const fs::path& file, std::string& text) {
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > (std::uintmax_t(64) << 20) || ec) return false;
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return false;
+std::string sizeText(std::uintmax_t bytes) {
     std::ostringstream s;
-    s << in.rdbuf();
-    text = s.str();
-    return true;
+    s << std::fixed << std::setprecision(1) << static_cast<double>(bytes) / double(1 << 20) << " MiB (" << bytes
+      << " bytes)";
+    return s.str();
+}
+
+struct FileContents {
+    enum class Status { Read, CannotOpen, TooLarge };
+    Status status = Status::CannotOpen;
+    std::uintmax_t size = 0; // known unless CannotOpen
+    std::string text;
+
+    // For Status::TooLarge.
+    std::string tooLargeMessage() const {
+        return "is " + sizeText(size) + "; a dictionary file may be at most " + std::to_string(maxFileBytes >> 20) + " MiB";
+    }
+};
+
+// Regular files only (never /dev/zero or a FIFO: a dictionary must not hang the solver), of at
+// most maxFileBytes.
+FileContents readWholeFile(const fs::path& file) {
+    FileContents out;
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) return out;
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (ec) return out;
+    if (size > maxFileBytes) {
+        out.status = FileContents::Status::TooLarge;
+        out.size = size;
+        return out;
+    }
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return out;
+    out.text.resize(static_cast<std::size_t>(size));
+    in.read(out.text.data(), static_cast<std::streamsize>(size));
+    out.text.resize(static_cast<std::size_t>(in.gcount())); // the file may have shrunk meanwhile
+    out.size = out.text.size();
+    out.status = FileContents::Status::Read;
+    return out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -784,20 +814,22 @@ private:
         const fs::path includingDir = fs::path(lexer.file()).parent_path();
         const fs::path file =
             relative.is_absolute() || includingDir.empty() ? relative : (includingDir / relative).lexically_normal();
-        std::string text;
-        if (!readWholeFile(file, text)) {
+        FileContents contents = readWholeFile(file);
+        if (contents.status == FileContents::Status::TooLarge)
+            throw InputError(directive.where, "include file '" + file.string() + "' " + contents.tooLargeMessage());
+        if (contents.status == FileContents::Status::CannotOpen) {
             if (optional) return;
             throw InputError(directive.where, "cannot open include file '" + file.string() + "'");
         }
         if (includeDepth_ >= maxIncludeDepth)
             throw InputError(directive.where, "#include nested more than " + std::to_string(maxIncludeDepth) +
                                                   " deep (does '" + file.string() + "' include itself?)");
-        if (text.size() > maxTotalFileBytes - std::min(bytesRead_, maxTotalFileBytes))
+        if (contents.size > maxTotalFileBytes - std::min(bytesRead_, maxTotalFileBytes))
             throw InputError(directive.where, "including '" + file.string() + "' makes the files read for this dictionary exceed " +
                                                   std::to_string(maxTotalFileBytes >> 20) + " MiB (repeated #includes count each time)");
-        bytesRead_ += text.size();
+        bytesRead_ += contents.size;
         ++includeDepth_;
-        Lexer included(std::move(text), file.string());
+        Lexer included(std::move(contents.text), file.string());
         parseEntries(included, dict, nullptr);
         --includeDepth_;
     }
@@ -837,10 +869,12 @@ void Dictionary::append(Entry entry) {
 
 Dictionary Dictionary::fromFile(const fs::path& file) {
     const std::string path = file.string();
-    std::string text;
-    if (!readWholeFile(file, text)) throw InputError({path, 0, 0}, "cannot open file");
+    FileContents contents = readWholeFile(file);
+    if (contents.status == FileContents::Status::TooLarge)
+        throw InputError({path, 0, 0}, "file " + contents.tooLargeMessage());
+    if (contents.status != FileContents::Status::Read) throw InputError({path, 0, 0}, "cannot open file");
     Dictionary d(file.filename().string(), {path, 0, 0});
-    DictionaryParser({&d}).parseText(d, std::move(text), path);
+    DictionaryParser({&d}).parseText(d, std::move(contents.text), path);
     return d;
 }
 

@@ -14,8 +14,8 @@
 //
 // Bounds, so that no input can crash the solver or exhaust its memory (each is an InputError):
 // sub-dictionaries and lists nest at most 256 levels deep (a copied `$dict` counts at its new
-// depth), #include files at most 32; the files read for one dictionary (#include repeats
-// counted) add up to at most 256 MiB; one dictionary holds at most 10^7
+// depth), #include files at most 32; a file is at most 64 MiB, and the files read for one
+// dictionary (#include repeats counted) at most 256 MiB; one dictionary holds at most 10^7
 // tokens (keywords and value tokens, after #include and `$name` substitution; roughly 1 GB).
 // Parsing and lookups take time linear in the input: keywords are hashed.
 //

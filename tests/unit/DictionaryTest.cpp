@@ -834,6 +834,21 @@ TEST(DictionaryLimits, CopiesOfDictionariesStopAtTheTokenBound) {
                     "error: copying '$d12' makes the dictionary exceed 10000000 tokens");
 }
 
+TEST(DictionaryFiles, FileOverTheSizeLimitGivesItsSizeAndTheLimit) {
+    TempDir dir;
+    const fs::path big = dir.writeFile("system/big", "");
+    fs::resize_file(big, std::uintmax_t(65) << 20); // sparse: no disk space used
+    EXPECT_EQ(errorOf([&] { Dictionary::fromFile(big); }),
+              big.string() + ": error: file is 65.0 MiB (68157440 bytes); a dictionary file may be at most 64 MiB");
+    const fs::path file = dir.writeFile("system/controlDict", "a 1;\n#include \"big\"\n");
+    EXPECT_EQ(errorOf([&] { Dictionary::fromFile(file); }),
+              file.string() + ":2:1: error: include file '" + big.lexically_normal().string() +
+                  "' is 65.0 MiB (68157440 bytes); a dictionary file may be at most 64 MiB");
+    // 64 MiB are read (and refused for what they hold: NUL bytes)
+    fs::resize_file(big, std::uintmax_t(64) << 20);
+    EXPECT_EQ(errorOf([&] { Dictionary::fromFile(big); }), big.string() + ":1:1: error: unexpected character byte 0x00");
+}
+
 TEST(DictionaryFiles, RepeatedIncludesAreBoundedInTotal) {
     TempDir dir;
     dir.writeFile("system/comment", "// " + std::string(std::size_t(60) << 20, '-') + "\n"); // 60 MiB, no entry
