@@ -147,18 +147,33 @@ struct LexToken {
     int endColumn = 0;
 };
 
+bool isUtf8Continuation(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+// Messages show at most the start of a long value (a type error must not print a list of a
+// million tokens) or of a long word.
+constexpr std::size_t maxShownTokens = 12;
+constexpr std::size_t maxShownCharacters = 80;
+
+std::string shortText(std::string text) {
+    if (text.size() <= maxShownCharacters) return text;
+    std::size_t length = maxShownCharacters;
+    while (length > 0 && isUtf8Continuation(text[length])) --length; // whole characters only
+    text.resize(length);
+    return text + " ...";
+}
+
 // How a token is named in "found ..." parts of messages.
 std::string describe(const LexToken& t) {
     switch (t.kind) {
     case Lex::Word:
-    case Lex::Number: return "'" + t.text + "'";
-    case Lex::String: return "string " + quote(t.text);
+    case Lex::Number: return "'" + shortText(t.text) + "'";
+    case Lex::String: return "string " + shortText(quote(t.text));
     case Lex::Open: return "'('";
     case Lex::Close: return "')'";
     case Lex::LBrace: return "'{'";
     case Lex::RBrace: return "'}'";
     case Lex::Semicolon: return "';'";
-    case Lex::Variable: return "'$" + t.text + "'";
+    case Lex::Variable: return "'$" + shortText(t.text) + "'";
     case Lex::Directive: return "'" + t.text + "'";
     case Lex::End: return "end of file";
     }
@@ -174,8 +189,6 @@ int utf8Length(unsigned char lead) {
     if (lead >= 0xF0 && lead <= 0xF4) return 4;
     return 0;
 }
-
-bool isUtf8Continuation(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
 
 class Lexer {
 public:
@@ -270,7 +283,7 @@ private:
         written += readWordChars();
         if (!atEnd() && current() == ',') // '1,2,3': commas as list separators
             fail(comma, "unexpected character ',' (list elements are separated by spaces, not commas)");
-        fail(number.where, "'" + written + "' is not a number (use a decimal point)");
+        fail(number.where, "'" + shortText(written) + "' is not a number (use a decimal point)");
     }
 
     void skipSpaceAndComments() {
@@ -420,6 +433,14 @@ std::string tokensText(const std::vector<Token>& tokens, std::size_t begin = 0,
         out += tokenText(tokens[i]);
     }
     return out;
+}
+
+// The value tokens [begin, end) as written, or their start followed by " ...".
+std::string shownTokensText(const std::vector<Token>& tokens, std::size_t begin, std::size_t end) {
+    end = std::min(end, tokens.size());
+    if (end - begin <= maxShownTokens) return shortText(tokensText(tokens, begin, end));
+    const std::string text = shortText(tokensText(tokens, begin, begin + maxShownTokens));
+    return text.ends_with(" ...") ? text : text + " ...";
 }
 
 } // namespace
@@ -919,7 +940,7 @@ const Entry& Dictionary::requireEntry(const std::string& keyword) const {
 namespace {
 [[noreturn]] void notADictionary(const Dictionary& d, const Entry& e) {
     throw InputError(e.where, "'" + e.keyword + "' in " + d.name() + " must be a dictionary ('" + e.keyword +
-                                  " { ... }'), found the value '" + tokensText(e.tokens) + "'",
+                                  " { ... }'), found the value '" + shownTokensText(e.tokens, 0, e.tokens.size()) + "'",
                      e.keyword);
 }
 } // namespace
@@ -1026,18 +1047,18 @@ namespace {
 std::string describeValue(const std::vector<Token>& tokens, std::size_t i) {
     const Token& t = tokens[i];
     switch (t.kind) {
-    case Token::Kind::Word: return "word '" + t.text + "'";
-    case Token::Kind::Number: return "number " + t.text;
-    case Token::Kind::String: return "string " + quote(t.text);
+    case Token::Kind::Word: return "word '" + shownTokensText(tokens, i, i + 1) + "'";
+    case Token::Kind::Number: return "number " + shownTokensText(tokens, i, i + 1);
+    case Token::Kind::String: return "string " + shownTokensText(tokens, i, i + 1);
     case Token::Kind::Close: return "')'";
     case Token::Kind::Open: {
         int depth = 0;
         std::size_t end = i;
-        for (; end < tokens.size(); ++end) {
+        for (; end < tokens.size() && end - i <= maxShownTokens; ++end) { // no further than is shown
             if (tokens[end].kind == Token::Kind::Open) ++depth;
             if (tokens[end].kind == Token::Kind::Close && --depth == 0) break;
         }
-        return "list " + tokensText(tokens, i, end + 1);
+        return "list " + shownTokensText(tokens, i, end + 1);
     }
     }
     return "?";
@@ -1064,7 +1085,7 @@ public:
     }
 
     [[noreturn]] void outOfRange(const Token& t, const std::string& range) const {
-        throw InputError(t.where, "number " + t.text + " for '" + keyword() + "' is out of range (" + range + ")", keyword());
+        throw InputError(t.where, "number " + shortText(t.text) + " for '" + keyword() + "' is out of range (" + range + ")", keyword());
     }
 
     // Nothing may follow token 'end' - 1.
