@@ -443,6 +443,16 @@ std::string shownTokensText(const std::vector<Token>& tokens, std::size_t begin,
     return text.ends_with(" ...") ? text : text + " ...";
 }
 
+// How deeply lists nest in a value.
+std::size_t listDepth(const std::vector<Token>& tokens) {
+    std::size_t depth = 0, deepest = 0;
+    for (const Token& t : tokens) {
+        if (t.kind == Token::Kind::Open) deepest = std::max(deepest, ++depth);
+        if (t.kind == Token::Kind::Close) --depth;
+    }
+    return deepest;
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -745,9 +755,12 @@ private:
         // allocated once.
         std::vector<const Entry*> substituted(raw.size(), nullptr);
         std::size_t size = 0;
+        std::size_t openLists = 0;
         for (std::size_t i = 0; i < raw.size(); ++i) {
             const LexToken& t = raw[i];
             if (t.kind != Lex::Variable) {
+                if (t.kind == Lex::Open) ++openLists;
+                if (t.kind == Lex::Close) --openLists;
                 ++size;
                 continue;
             }
@@ -756,6 +769,9 @@ private:
                 throw InputError(t.where, "'$" + t.text + "' is a dictionary; it can only be the whole value of an entry ('" +
                                               keyword.text + " $" + t.text + ";')", keyword.text);
             countTokens(source.tokens.size(), t.where, keyword.text, [&] { return "substituting '$" + t.text + "'"; });
+            if (openLists + listDepth(source.tokens) > maxNestingLevels)
+                throw InputError(t.where, "lists nested deeper than " + std::to_string(maxNestingLevels) +
+                                              " levels (substituting '$" + t.text + "' here)", keyword.text);
             substituted[i] = &source;
             size += source.tokens.size();
         }

@@ -772,6 +772,16 @@ TEST(DictionaryLimits, DeeplyNestedListsAreAnError) {
     EXPECT_EQ(d.findEntry("v")->tokens.size(), 513u);
 }
 
+TEST(DictionaryLimits, SubstitutedListsCountAtTheirNewDepth) {
+    const auto nestedList = [](int levels, const std::string& inner) {
+        return std::string(std::size_t(levels), '(') + inner + std::string(std::size_t(levels), ')');
+    };
+    const std::string a = "a " + nestedList(200, "1") + ";\n";
+    EXPECT_EQ(errorOf([&] { parse(a + "b " + nestedList(100, "$a") + ";\n"); }),
+              testFile + ":2:103: error: lists nested deeper than 256 levels (substituting '$a' here) (keyword 'b')");
+    EXPECT_EQ(parse(a + "b " + nestedList(56, "$a") + ";\n").findEntry("b")->tokens.size(), 513u);
+}
+
 TEST(DictionaryLimits, CopiedDictionariesCountAtTheirNewDepth) {
     // 'src' spans 200 levels; copied 101 levels down it would reach level 300
     const std::string src = "src{" + nestedDictionaries(199, "x 1;") + "}\n";
