@@ -33,11 +33,16 @@ namespace {
 const std::string headerKeyword = "FoamFile";
 
 // Bounds on what one dictionary may hold (see Dictionary.hpp). Sub-dictionaries are parsed
-// recursively, so their nesting bounds the stack (10,000 levels overflowed it); the token bound
-// stops `$name` doubling (`b ($a $a); c ($b $b); ...`) long before memory runs out.
+// recursively, so their nesting bounds the stack (10,000 levels overflowed it). The token bounds
+// keep memory in check: a token takes about 100 bytes, a sub-dictionary about five times that,
+// so it counts as 5. The tighter bound on what `$name` substitution adds stops doubling
+// (`b ($a $a); c ($b $b); ...`) while it is still cheap: a 1 kB input reached 10^7 tokens in
+// seconds and more than 1 GB.
 constexpr int maxIncludeDepth = 32;
 constexpr std::size_t maxNestingLevels = 256;
 constexpr std::size_t maxTokens = 10'000'000;
+constexpr std::size_t maxSubstitutedTokens = 100'000;
+constexpr std::size_t subDictionaryTokens = 5; // with its keyword
 constexpr std::uintmax_t maxFileBytes = std::uintmax_t(64) << 20;
 constexpr std::uintmax_t maxTotalFileBytes = std::uintmax_t(256) << 20;
 constexpr int keywordWidth = 16; // toString() pads keywords to this width, as OpenFOAM does
@@ -567,7 +572,8 @@ public:
         copy->index_.reserve(source.entries_.size());
         for (const Entry& e : source.entries_) {
             if (limits)
-                limits->parser.countTokens(1 + e.tokens.size(), limits->variable.where, limits->keyword,
+                limits->parser.countTokens(e.isDict() ? subDictionaryTokens : 1 + e.tokens.size(), Added::BySubstitution,
+                                           limits->variable.where, limits->keyword,
                                            [&] { return "copying '$" + limits->variable.text + "'"; });
             Entry c{e.keyword, e.where, e.tokens, nullptr};
             if (e.isDict()) {
@@ -602,17 +608,27 @@ public:
     }
 
 private:
-    // Counts 'n' more tokens (keywords and value tokens) against maxTokens; 'cause' (called only
-    // for the error) says what adds them, e.g. "substituting '$b'".
+    enum class Added { ByReading, BySubstitution };
+
+    // Counts 'n' more tokens (keywords and value tokens) against maxTokens, and against
+    // maxSubstitutedTokens too when `$name` adds them; 'cause' (called only for the error) says
+    // what adds them, e.g. "substituting '$b'".
     template <class Cause>
-    void countTokens(std::size_t n, const SourceLocation& where, const std::string& keyword, Cause cause) {
-        if (n <= maxTokens - tokenCount_) {
-            tokenCount_ += n;
-            return;
+    void countTokens(std::size_t n, Added how, const SourceLocation& where, const std::string& keyword, Cause cause) {
+        if (how == Added::BySubstitution) {
+            if (n > maxSubstitutedTokens - substitutedCount_)
+                throw InputError(where, cause() + " makes the substitutions in this dictionary exceed " +
+                                            std::to_string(maxSubstitutedTokens) +
+                                            " tokens (keywords, values and sub-dictionaries)",
+                                 keyword);
+            substitutedCount_ += n;
         }
-        throw InputError(where, cause() + " makes the dictionary exceed " + std::to_string(maxTokens) +
-                                    " tokens (keywords and values, after #include and $substitution)",
-                         keyword);
+        if (n > maxTokens - tokenCount_)
+            throw InputError(where, cause() + " makes the dictionary exceed " + std::to_string(maxTokens) +
+                                        " tokens (keywords, values and sub-dictionaries; read, #included or "
+                                        "substituted)",
+                             keyword);
+        tokenCount_ += n;
     }
 
     // Reads entries into 'dict' until the '}' matching 'open' (or end of input when 'open' is
@@ -660,13 +676,15 @@ private:
 
     // `keyword value...;` or `keyword { ... }`
     void parseEntry(Lexer& lexer, Dictionary& dict, const LexToken& keyword) {
-        countTokens(1, keyword.where, keyword.text, [&] { return "the keyword '" + keyword.text + "'"; });
+        countTokens(1, Added::ByReading, keyword.where, keyword.text, [&] { return "the keyword '" + keyword.text + "'"; });
         bool isDict = false;
         {
             Lexer::ValueOf value(lexer, keyword.text);
             isDict = lexer.peek().kind == Lex::LBrace;
         }
         if (isDict) {
+            countTokens(subDictionaryTokens - 1, Added::ByReading, keyword.where, keyword.text,
+                        [&] { return "the dictionary '" + keyword.text + "'"; });
             const LexToken open = lexer.next();
             auto sub = makeDictionary(childName(dict, keyword.text), keyword.where);
             parseSubDictionary(lexer, *sub, open, keyword.text);
@@ -733,7 +751,7 @@ private:
             default:
                 break;
             }
-            countTokens(1, t.where, kw, [&] { return "the value of '" + kw + "'"; });
+            countTokens(1, Added::ByReading, t.where, kw, [&] { return "the value of '" + kw + "'"; });
             previousLine = t.endLine;
             raw.push_back(lexer.next());
         }
@@ -746,6 +764,8 @@ private:
         if (raw.size() == 1 && raw.front().kind == Lex::Variable) {
             const Entry& source = resolve(raw.front());
             if (source.isDict()) {
+                countTokens(subDictionaryTokens - 1, Added::BySubstitution, raw.front().where, keyword.text,
+                            [&] { return "copying '$" + raw.front().text + "'"; });
                 const CopyLimits limits{*this, scopes_.size(), raw.front(), keyword.text};
                 e.dict = clone(*source.dict, childName(dict, keyword.text), keyword.where, &limits);
                 return e;
@@ -768,7 +788,8 @@ private:
             if (source.isDict())
                 throw InputError(t.where, "'$" + t.text + "' is a dictionary; it can only be the whole value of an entry ('" +
                                               keyword.text + " $" + t.text + ";')", keyword.text);
-            countTokens(source.tokens.size(), t.where, keyword.text, [&] { return "substituting '$" + t.text + "'"; });
+            countTokens(source.tokens.size(), Added::BySubstitution, t.where, keyword.text,
+                        [&] { return "substituting '$" + t.text + "'"; });
             if (openLists + listDepth(source.tokens) > maxNestingLevels)
                 throw InputError(t.where, "lists nested deeper than " + std::to_string(maxNestingLevels) +
                                               " levels (substituting '$" + t.text + "' here)", keyword.text);
@@ -873,7 +894,8 @@ private:
 
     std::vector<Dictionary*> scopes_;
     int includeDepth_ = 0;
-    std::size_t tokenCount_ = 0;     // against maxTokens
+    std::size_t tokenCount_ = 0;       // against maxTokens
+    std::size_t substitutedCount_ = 0; // against maxSubstitutedTokens
     std::uintmax_t bytesRead_ = 0;   // against maxTotalFileBytes
 };
 

@@ -15,8 +15,9 @@
 // Bounds, so that no input can crash the solver or exhaust its memory (each is an InputError):
 // sub-dictionaries and lists nest at most 256 levels deep (a copied `$dict` counts at its new
 // depth), #include files at most 32; a file is at most 64 MiB, and the files read for one
-// dictionary (#include repeats counted) at most 256 MiB; one dictionary holds at most 10^7
-// tokens (keywords and value tokens, after #include and `$name` substitution; roughly 1 GB).
+// dictionary (#include repeats counted) at most 256 MiB; reading one dictionary handles at most
+// 10^7 tokens (each keyword and value token counts 1, a sub-dictionary 5; read, #included or
+// substituted; about 1 GB), of which `$name` substitution and `$dict` copies may add 10^5.
 // Parsing and lookups take time linear in the input: keywords are hashed.
 //
 // Lookups are typed. A required keyword that is missing, or a value of the wrong type, throws

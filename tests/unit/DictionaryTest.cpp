@@ -814,34 +814,55 @@ TEST(DictionaryLimits, TwoHundredThousandKeywordsParseAndAreFound) {
     EXPECT_CONTAINS(errorOf([&] { d.get<int>("key200000"); }), "keyword 'key200000' is missing in testDict");
 }
 
-TEST(DictionaryLimits, SubstitutionThatKeepsDoublingStopsAtTheTokenBound) {
+TEST(DictionaryLimits, SubstitutionThatKeepsDoublingStopsAtItsBound) {
     // a0 x; a1 ($a0 $a0); a2 ($a1 $a1); ...: 40 levels would be 3·2^40 tokens, which ended in
-    // std::bad_alloc. (A short file name keeps the locations of the copied tokens small.)
+    // std::bad_alloc.
     std::string text = "a0 x;\n";
     for (int i = 1; i <= 40; ++i) {
-        const std::string previous = "$a" + std::to_string(i - 1), current = "a" + std::to_string(i);
+        const std::string previous = std::string("$a").append(std::to_string(i - 1));
+        const std::string current = std::string("a").append(std::to_string(i));
         text.append(current).append(" (").append(previous).append(" ").append(previous).append(");\n");
     }
     EXPECT_EQ(errorOf([&] { Dictionary::fromString(text, "doubling"); }),
-              "doubling:22:11: error: substituting '$a20' makes the dictionary exceed 10000000 tokens (keywords "
-              "and values, after #include and $substitution) (keyword 'a21')");
+              "doubling:16:6: error: substituting '$a14' makes the substitutions in this dictionary exceed 100000 "
+              "tokens (keywords, values and sub-dictionaries) (keyword 'a15')");
     // below the bound the same substitutions are made in full
-    const std::size_t cut = text.find("a16 ");
-    const Dictionary d = Dictionary::fromString(text.substr(0, cut), "doubling");
-    EXPECT_EQ(d.findEntry("a15")->tokens.size(), 3u * (1u << 15) - 2u);
+    const Dictionary d = Dictionary::fromString(text.substr(0, text.find("a15 ")), "doubling");
+    EXPECT_EQ(d.findEntry("a14")->tokens.size(), 3u * (1u << 14) - 2u);
 }
 
-TEST(DictionaryLimits, CopiesOfDictionariesStopAtTheTokenBound) {
-    // each d<i> holds two copies of d<i-1>: 2^i copies of a 1000-number list
-    std::string text = "d0 { v (";
-    for (int i = 0; i < 1000; ++i) text += " 1";
-    text += "); }\n";
-    for (int i = 1; i <= 20; ++i) {
-        const std::string previous = "$d" + std::to_string(i - 1), current = "d" + std::to_string(i);
-        text.append(current).append(" { a ").append(previous).append("; b ").append(previous).append("; }\n");
-    }
-    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromString(text, "copies"); }),
-                    "error: copying '$d12' makes the dictionary exceed 10000000 tokens");
+TEST(DictionaryLimits, CopiesOfDictionariesStopAtTheSubstitutionBound) {
+    // each d<i> holds two copies of d<i-1>: 2^i copies of d0
+    const auto doubling = [](const std::string& d0) {
+        std::string text = d0;
+        for (int i = 1; i <= 20; ++i) {
+            const std::string previous = std::string("$d").append(std::to_string(i - 1));
+            const std::string current = std::string("d").append(std::to_string(i));
+            text.append(current).append(" { a ").append(previous).append("; b ").append(previous).append("; }\n");
+        }
+        return text;
+    };
+    std::string list = "d0 { v (";
+    for (int i = 0; i < 1000; ++i) list += " 1";
+    EXPECT_EQ(errorOf([&] { Dictionary::fromString(doubling(list + "); }\n"), "copies"); }),
+              "copies:7:15: error: copying '$d5' makes the substitutions in this dictionary exceed 100000 tokens "
+              "(keywords, values and sub-dictionaries) (keyword 'b')");
+    // a sub-dictionary counts as 5 tokens, empty or not
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromString(doubling("d0 { }\n"), "copies"); }),
+                    "copies:14:9: error: copying '$d12' makes the substitutions in this dictionary exceed 100000 tokens");
+}
+
+TEST(DictionaryLimits, ReadingStopsAtTheTokenBound) {
+    // 11 values of a million tokens each (a later one replaces the earlier): every token read counts
+    std::string line = "v (";
+    for (int i = 0; i < 999'999; ++i) line += " 1";
+    line += ");\n";
+    std::string text;
+    for (int i = 0; i < 11; ++i) text += line;
+    const std::string message = errorOf([&] { Dictionary::fromString(text, "many"); });
+    EXPECT_CONTAINS(message, "many:10:");
+    EXPECT_CONTAINS(message, "error: the value of 'v' makes the dictionary exceed 10000000 tokens (keywords, values and "
+                             "sub-dictionaries; read, #included or substituted) (keyword 'v')");
 }
 
 TEST(DictionaryFiles, FileOverTheSizeLimitGivesItsSizeAndTheLimit) {
