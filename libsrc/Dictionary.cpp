@@ -18,6 +18,7 @@
 #include <iomanip>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -30,7 +31,20 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string headerKeyword = "FoamFile";
+
+// Bounds on what one dictionary may hold (see Dictionary.hpp). Sub-dictionaries are parsed
+// recursively, so their nesting bounds the stack (10,000 levels overflowed it). The token bounds
+// keep memory in check: a token takes about 100 bytes, a sub-dictionary about five times that,
+// so it counts as 5. The tighter bound on what `$name` substitution adds stops doubling
+// (`b ($a $a); c ($b $b); ...`) while it is still cheap: a 1 kB input reached 10^7 tokens in
+// seconds and more than 1 GB.
 constexpr int maxIncludeDepth = 32;
+constexpr std::size_t maxNestingLevels = 256;
+constexpr std::size_t maxTokens = 10'000'000;
+constexpr std::size_t maxSubstitutedTokens = 100'000;
+constexpr std::size_t subDictionaryTokens = 5; // with its keyword
+constexpr std::uintmax_t maxFileBytes = std::uintmax_t(64) << 20;
+constexpr std::uintmax_t maxTotalFileBytes = std::uintmax_t(256) << 20;
 constexpr int keywordWidth = 16; // toString() pads keywords to this width, as OpenFOAM does
 
 bool isWordChar(char c) {
@@ -82,17 +96,46 @@ NumberStatus parseNumber(const std::string& text, double& value) {
     return NumberStatus::Ok;
 }
 
-// Regular files only (never /dev/zero or a FIFO: a dictionary must not hang the solver), and
-// at most 64 MiB.
-bool readWholeFile(const fs::path& file, std::string& text) {
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec) || fs::file_size(file, ec) > (std::uintmax_t(64) << 20) || ec) return false;
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return false;
+std::string sizeText(std::uintmax_t bytes) {
     std::ostringstream s;
-    s << in.rdbuf();
-    text = s.str();
-    return true;
+    s << std::fixed << std::setprecision(1) << static_cast<double>(bytes) / double(1 << 20) << " MiB (" << bytes
+      << " bytes)";
+    return s.str();
+}
+
+struct FileContents {
+    enum class Status { Read, CannotOpen, TooLarge };
+    Status status = Status::CannotOpen;
+    std::uintmax_t size = 0; // known unless CannotOpen
+    std::string text;
+
+    // For Status::TooLarge.
+    std::string tooLargeMessage() const {
+        return "is " + sizeText(size) + "; a dictionary file may be at most " + std::to_string(maxFileBytes >> 20) + " MiB";
+    }
+};
+
+// Regular files only (never /dev/zero or a FIFO: a dictionary must not hang the solver), of at
+// most maxFileBytes.
+FileContents readWholeFile(const fs::path& file) {
+    FileContents out;
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) return out;
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (ec) return out;
+    if (size > maxFileBytes) {
+        out.status = FileContents::Status::TooLarge;
+        out.size = size;
+        return out;
+    }
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return out;
+    out.text.resize(static_cast<std::size_t>(size));
+    in.read(out.text.data(), static_cast<std::streamsize>(size));
+    out.text.resize(static_cast<std::size_t>(in.gcount())); // the file may have shrunk meanwhile
+    out.size = out.text.size();
+    out.status = FileContents::Status::Read;
+    return out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -109,22 +152,47 @@ struct LexToken {
     int endColumn = 0;
 };
 
+bool isUtf8Continuation(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
+// Messages show at most the start of a long value (a type error must not print a list of a
+// million tokens) or of a long word.
+constexpr std::size_t maxShownTokens = 12;
+constexpr std::size_t maxShownCharacters = 80;
+
+std::string shortText(std::string text) {
+    if (text.size() <= maxShownCharacters) return text;
+    std::size_t length = maxShownCharacters;
+    while (length > 0 && isUtf8Continuation(text[length])) --length; // whole characters only
+    text.resize(length);
+    return text + " ...";
+}
+
 // How a token is named in "found ..." parts of messages.
 std::string describe(const LexToken& t) {
     switch (t.kind) {
     case Lex::Word:
-    case Lex::Number: return "'" + t.text + "'";
-    case Lex::String: return "string " + quote(t.text);
+    case Lex::Number: return "'" + shortText(t.text) + "'";
+    case Lex::String: return "string " + shortText(quote(t.text));
     case Lex::Open: return "'('";
     case Lex::Close: return "')'";
     case Lex::LBrace: return "'{'";
     case Lex::RBrace: return "'}'";
     case Lex::Semicolon: return "';'";
-    case Lex::Variable: return "'$" + t.text + "'";
+    case Lex::Variable: return "'$" + shortText(t.text) + "'";
     case Lex::Directive: return "'" + t.text + "'";
     case Lex::End: return "end of file";
     }
     return "?";
+}
+
+// Length of the UTF-8 sequence starting with byte 'lead' (1 for ASCII), 0 for a byte that cannot
+// start one.
+int utf8Length(unsigned char lead) {
+    if (lead < 0x80) return 1;
+    if (lead >= 0xC2 && lead <= 0xDF) return 2;
+    if (lead >= 0xE0 && lead <= 0xEF) return 3;
+    if (lead >= 0xF0 && lead <= 0xF4) return 4;
+    return 0;
 }
 
 class Lexer {
@@ -134,6 +202,19 @@ public:
     }
 
     const std::string& file() const { return file_; }
+
+    // While a keyword's value is read, errors of the lexer name that keyword too: a stray
+    // character or '0,02' is then reported with the keyword it spoils.
+    class ValueOf {
+    public:
+        ValueOf(Lexer& lexer, const std::string& keyword) : lexer_(lexer) { lexer_.keyword_ = keyword; }
+        ~ValueOf() { lexer_.keyword_.clear(); }
+        ValueOf(const ValueOf&) = delete;
+        ValueOf& operator=(const ValueOf&) = delete;
+
+    private:
+        Lexer& lexer_;
+    };
 
     const LexToken& peek() {
         if (!peeked_) {
@@ -155,14 +236,59 @@ private:
     char following() const { return pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0'; }
     SourceLocation here() const { return {file_, line_, column_}; }
 
+    [[noreturn]] void fail(const SourceLocation& where, const std::string& message) const {
+        throw InputError(where, message, keyword_);
+    }
+
+    // Columns count characters: the continuation bytes of a UTF-8 character take no column.
     void advance() {
         if (text_[pos_] == '\n') {
             ++line_;
             column_ = 1;
-        } else {
+        } else if (!isUtf8Continuation(text_[pos_])) {
             ++column_;
         }
         ++pos_;
+    }
+
+    // "unexpected character ..." for the character at the current position, shown as itself when
+    // it is printable ASCII or valid UTF-8.
+    [[noreturn]] void unexpectedCharacter(const SourceLocation& where) const {
+        const auto lead = static_cast<unsigned char>(current());
+        if (lead == ',') fail(where, "unexpected character ',' (list elements are separated by spaces, not commas)");
+        if (std::isprint(lead)) fail(where, "unexpected character '" + std::string(1, current()) + "'");
+        const int length = utf8Length(lead);
+        if (length > 1 && pos_ + static_cast<std::size_t>(length) <= text_.size()) {
+            char32_t code = lead & (0xFF >> (length + 1));
+            bool valid = true;
+            for (int i = 1; i < length; ++i) {
+                valid = valid && isUtf8Continuation(text_[pos_ + i]);
+                code = (code << 6) | (static_cast<unsigned char>(text_[pos_ + i]) & 0x3F);
+            }
+            const char32_t smallest = length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+            valid = valid && code >= smallest && code <= 0x10FFFF && !(code >= 0xD800 && code <= 0xDFFF);
+            if (valid) {
+                std::ostringstream u;
+                u << "U+" << std::uppercase << std::hex << std::setw(4) << std::setfill('0') << std::uint32_t(code);
+                fail(where, "unexpected character '" + text_.substr(pos_, static_cast<std::size_t>(length)) + "' (" +
+                                u.str() + "; only comments and quoted strings may hold non-ASCII text)");
+            }
+        }
+        std::ostringstream hex;
+        hex << "byte 0x" << std::hex << std::setw(2) << std::setfill('0') << int(lead);
+        fail(where, "unexpected character " + hex.str() + (lead >= 0x80 ? " (not UTF-8 text)" : ""));
+    }
+
+    // A number written with a decimal comma, '0,02': the lexer is at the ','.
+    [[noreturn]] void decimalComma(const LexToken& number) {
+        const SourceLocation comma = here();
+        std::string written = number.text;
+        written += ',';
+        advance();
+        written += readWordChars();
+        if (!atEnd() && current() == ',') // '1,2,3': commas as list separators
+            fail(comma, "unexpected character ',' (list elements are separated by spaces, not commas)");
+        fail(number.where, "'" + shortText(written) + "' is not a number (use a decimal point)");
     }
 
     void skipSpaceAndComments() {
@@ -171,13 +297,14 @@ private:
             if (std::isspace(static_cast<unsigned char>(c))) {
                 advance();
             } else if (c == '/' && following() == '/') {
-                while (!atEnd() && current() != '\n') advance();
+                // to the end of the line in one step: the column is reset there anyway
+                pos_ = std::min(text_.find('\n', pos_), text_.size());
             } else if (c == '/' && following() == '*') {
                 const SourceLocation start = here();
                 advance();
                 advance();
                 for (;;) {
-                    if (atEnd()) throw InputError(start, "unterminated comment: '/*' without a matching '*/'");
+                    if (atEnd()) fail(start, "unterminated comment: '/*' without a matching '*/'");
                     if (current() == '*' && following() == '/') {
                         advance();
                         advance();
@@ -228,7 +355,7 @@ private:
             advance();
             for (;;) {
                 if (atEnd() || current() == '\n')
-                    throw InputError(t.where, "unterminated string: missing closing '\"' on this line");
+                    fail(t.where, "unterminated string: missing closing '\"' on this line");
                 const char s = current();
                 if (s == '"') {
                     advance();
@@ -243,7 +370,7 @@ private:
             t.kind = Lex::Variable;
             advance();
             t.text = readWordChars();
-            if (t.text.empty()) throw InputError(t.where, "expected a keyword name after '$'");
+            if (t.text.empty()) fail(t.where, "expected a keyword name after '$'");
             break;
         case '#':
             t.kind = Lex::Directive;
@@ -253,24 +380,16 @@ private:
                 t.text += current();
                 advance();
             }
-            if (t.text == "#") throw InputError(t.where, "expected a directive name after '#' (e.g. #include)");
+            if (t.text == "#") fail(t.where, "expected a directive name after '#' (e.g. #include)");
             break;
         default:
-            if (!isWordChar(c)) {
-                const auto u = static_cast<unsigned char>(c);
-                std::string shown;
-                if (std::isprint(u)) {
-                    shown = "'" + std::string(1, c) + "'";
-                } else {
-                    std::ostringstream hex;
-                    hex << "byte 0x" << std::hex << std::setw(2) << std::setfill('0') << int(u);
-                    shown = hex.str();
-                }
-                throw InputError(t.where, "unexpected character " + shown);
-            }
+            if (!isWordChar(c)) unexpectedCharacter(t.where);
             t.text = readWordChars();
             double ignored = 0;
             t.kind = parseNumber(t.text, ignored) == NumberStatus::NotANumber ? Lex::Word : Lex::Number;
+            if (t.kind == Lex::Number && !atEnd() && current() == ',' &&
+                std::isdigit(static_cast<unsigned char>(following())))
+                decimalComma(t);
             break;
         }
         t.endLine = lastEndLine_ = line_;
@@ -287,9 +406,10 @@ private:
     int lastEndColumn_ = 1;
     LexToken lookahead_;
     bool peeked_ = false;
+    std::string keyword_; // whose value is being read (see ValueOf), or empty
 };
 
-Token toToken(const LexToken& t) {
+Token toToken(LexToken t) {
     Token out;
     switch (t.kind) {
     case Lex::Word: out.kind = Token::Kind::Word; break;
@@ -299,8 +419,8 @@ Token toToken(const LexToken& t) {
     case Lex::Close: out.kind = Token::Kind::Close; break;
     default: break; // never called for other kinds
     }
-    out.text = t.text;
-    out.where = t.where;
+    out.text = std::move(t.text);
+    out.where = std::move(t.where);
     return out;
 }
 
@@ -320,19 +440,70 @@ std::string tokensText(const std::vector<Token>& tokens, std::size_t begin = 0,
     return out;
 }
 
+// The value tokens [begin, end) as written, or their start followed by " ...".
+std::string shownTokensText(const std::vector<Token>& tokens, std::size_t begin, std::size_t end) {
+    end = std::min(end, tokens.size());
+    if (end - begin <= maxShownTokens) return shortText(tokensText(tokens, begin, end));
+    const std::string text = shortText(tokensText(tokens, begin, begin + maxShownTokens));
+    return text.ends_with(" ...") ? text : text + " ...";
+}
+
+// How deeply lists nest in a value.
+std::size_t listDepth(const std::vector<Token>& tokens) {
+    std::size_t depth = 0, deepest = 0;
+    for (const Token& t : tokens) {
+        if (t.kind == Token::Kind::Open) deepest = std::max(deepest, ++depth);
+        if (t.kind == Token::Kind::Close) --depth;
+    }
+    return deepest;
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------------------------
 // Parser
 
+namespace detail {
+
+// A dictionary's name, "controlDict.pressure.kernel": the enclosing dictionary's name and the
+// keyword, joined when first asked for. (The full name stored in every sub-dictionary would cost
+// depth times keyword length bytes each: quadratic in the input for long keywords.)
+struct ScopedName {
+    ScopedName(std::shared_ptr<const ScopedName> enclosing, std::string keyword)
+        : parent(std::move(enclosing)), last(std::move(keyword)) {}
+
+    const std::string& text() const {
+        if (!parent) return last;
+        std::call_once(joinedOnce, [this] {
+            std::vector<const std::string*> parts;
+            for (const ScopedName* n = this; n; n = n->parent.get()) parts.push_back(&n->last);
+            for (auto part = parts.rbegin(); part != parts.rend(); ++part)
+                joined.append(part == parts.rbegin() ? "" : ".").append(**part);
+        });
+        return joined;
+    }
+
+    const std::shared_ptr<const ScopedName> parent; // null at the top
+    const std::string last;                          // the keyword (the file's name at the top)
+
+private:
+    mutable std::once_flag joinedOnce;
+    mutable std::string joined;
+};
+
+} // namespace detail
+
 class DictionaryParser {
 public:
+    using Name = std::shared_ptr<const detail::ScopedName>;
+
     // 'scopes': the dictionaries that `$name` may look into, outermost first; the last one is
     // the dictionary being filled.
     explicit DictionaryParser(std::vector<Dictionary*> scopes) : scopes_(std::move(scopes)) {}
 
-    void parseText(Dictionary& into, const std::string& text, const std::string& file) {
-        Lexer lexer(text, file);
+    void parseText(Dictionary& into, std::string text, const std::string& file) {
+        bytesRead_ += text.size();
+        Lexer lexer(std::move(text), file);
         parseEntries(lexer, into, nullptr);
     }
 
@@ -341,12 +512,16 @@ public:
     Entry parseOverride(Dictionary& owner, const std::string& keyword, const std::string& valueText) {
         const SourceLocation where{"<override>", 0, 0};
         Lexer lexer(valueText, where.file);
-        if (lexer.peek().kind == Lex::LBrace) {
+        bool isDict = false;
+        {
+            Lexer::ValueOf value(lexer, keyword);
+            isDict = lexer.peek().kind == Lex::LBrace;
+        }
+        if (isDict) {
             const LexToken open = lexer.next();
-            auto sub = std::make_shared<Dictionary>(owner.name_ + "." + keyword, where);
-            scopes_.push_back(sub.get());
-            parseEntries(lexer, *sub, &open);
-            scopes_.pop_back();
+            auto sub = makeDictionary(childName(owner, keyword), where);
+            parseSubDictionary(lexer, *sub, open, keyword);
+            Lexer::ValueOf value(lexer, keyword);
             if (lexer.peek().kind == Lex::Semicolon) lexer.next();
             const LexToken& rest = lexer.peek();
             if (rest.kind != Lex::End)
@@ -363,20 +538,50 @@ public:
         return e;
     }
 
-    static Entry* find(Dictionary& d, const std::string& keyword) {
-        for (auto& e : d.entries_)
-            if (e.keyword == keyword) return &e;
-        return nullptr;
+    static Name childName(const Dictionary& parent, const std::string& keyword) {
+        static const Name unnamed = std::make_shared<const detail::ScopedName>(nullptr, "");
+        return std::make_shared<const detail::ScopedName>(parent.name_ ? parent.name_ : unnamed, keyword);
     }
 
+    static std::shared_ptr<Dictionary> makeDictionary(Name name, const SourceLocation& where) {
+        auto d = std::make_shared<Dictionary>();
+        d->name_ = std::move(name);
+        d->where_ = where;
+        return d;
+    }
+
+    // For a copy made by `$dict` while parsing: the depth of the copy itself (that of the entry
+    // it becomes) and the variable, to hold the copy to maxNestingLevels and maxTokens.
+    struct CopyLimits {
+        DictionaryParser& parser;
+        std::size_t level;
+        const LexToken& variable;
+        const std::string& keyword;
+    };
+
     // Deep copy named 'name' (sub-dictionaries renamed below it); lookup marks are not copied.
-    static std::shared_ptr<Dictionary> clone(const Dictionary& source, const std::string& name,
-                                             const SourceLocation& where) {
-        auto copy = std::make_shared<Dictionary>(name, where);
+    static std::shared_ptr<Dictionary> clone(const Dictionary& source, Name name, const SourceLocation& where,
+                                             const CopyLimits* limits = nullptr) {
+        if (limits && limits->level > maxNestingLevels)
+            throw InputError(limits->variable.where, "dictionaries nested deeper than " +
+                                                         std::to_string(maxNestingLevels) + " levels (copying '$" +
+                                                         limits->variable.text + "' here)",
+                             limits->keyword);
+        auto copy = makeDictionary(std::move(name), where);
+        copy->entries_.reserve(source.entries_.size());
+        copy->index_.reserve(source.entries_.size());
         for (const Entry& e : source.entries_) {
-            Entry c = e;
-            if (e.isDict()) c.dict = clone(*e.dict, name + "." + e.keyword, e.dict->where_);
-            copy->entries_.push_back(std::move(c));
+            if (limits)
+                limits->parser.countTokens(e.isDict() ? subDictionaryTokens : 1 + e.tokens.size(), Added::BySubstitution,
+                                           limits->variable.where, limits->keyword,
+                                           [&] { return "copying '$" + limits->variable.text + "'"; });
+            Entry c{e.keyword, e.where, e.tokens, nullptr};
+            if (e.isDict()) {
+                std::optional<CopyLimits> deeper;
+                if (limits) deeper.emplace(CopyLimits{limits->parser, limits->level + 1, limits->variable, limits->keyword});
+                c.dict = clone(*e.dict, childName(*copy, e.keyword), e.dict->where_, deeper ? &*deeper : nullptr);
+            }
+            copy->append(std::move(c));
         }
         return copy;
     }
@@ -384,9 +589,9 @@ public:
     // Adds an entry; a duplicate keyword replaces the earlier entry in place, except that a
     // dictionary given again is merged into the earlier one (OpenFOAM's default #inputMode merge).
     static void addEntry(Dictionary& d, Entry e) {
-        Entry* existing = find(d, e.keyword);
+        Entry* existing = d.find(std::string_view(e.keyword));
         if (!existing) {
-            d.entries_.push_back(std::move(e));
+            d.append(std::move(e));
         } else if (existing->isDict() && e.isDict()) {
             for (auto& sub : e.dict->entries_) addEntry(*existing->dict, std::move(sub));
         } else {
@@ -396,13 +601,36 @@ public:
 
     // Replaces or appends, without merging (Dictionary::set, setDict).
     static void replaceEntry(Dictionary& d, Entry e) {
-        if (Entry* existing = find(d, e.keyword))
+        if (Entry* existing = d.find(std::string_view(e.keyword)))
             *existing = std::move(e);
         else
-            d.entries_.push_back(std::move(e));
+            d.append(std::move(e));
     }
 
 private:
+    enum class Added { ByReading, BySubstitution };
+
+    // Counts 'n' more tokens (keywords and value tokens) against maxTokens, and against
+    // maxSubstitutedTokens too when `$name` adds them; 'cause' (called only for the error) says
+    // what adds them, e.g. "substituting '$b'".
+    template <class Cause>
+    void countTokens(std::size_t n, Added how, const SourceLocation& where, const std::string& keyword, Cause cause) {
+        if (how == Added::BySubstitution) {
+            if (n > maxSubstitutedTokens - substitutedCount_)
+                throw InputError(where, cause() + " makes the substitutions in this dictionary exceed " +
+                                            std::to_string(maxSubstitutedTokens) +
+                                            " tokens (keywords, values and sub-dictionaries)",
+                                 keyword);
+            substitutedCount_ += n;
+        }
+        if (n > maxTokens - tokenCount_)
+            throw InputError(where, cause() + " makes the dictionary exceed " + std::to_string(maxTokens) +
+                                        " tokens (keywords, values and sub-dictionaries; read, #included or "
+                                        "substituted)",
+                             keyword);
+        tokenCount_ += n;
+    }
+
     // Reads entries into 'dict' until the '}' matching 'open' (or end of input when 'open' is
     // null, i.e. at file level).
     void parseEntries(Lexer& lexer, Dictionary& dict, const LexToken* open) {
@@ -411,7 +639,7 @@ private:
             switch (t.kind) {
             case Lex::End:
                 if (open)
-                    throw InputError(t.where, "missing '}' at end of file: dictionary '" + dict.name_ +
+                    throw InputError(t.where, "missing '}' at end of file: dictionary '" + dict.name() +
                                                   "' opened at " + locationText(open->where) +
                                                   " is not closed");
                 return;
@@ -435,19 +663,35 @@ private:
         }
     }
 
+    // The body of a sub-dictionary, after its '{'. Sub-dictionaries are parsed recursively, so
+    // their depth is bounded (the stack overflowed at some thousands).
+    void parseSubDictionary(Lexer& lexer, Dictionary& sub, const LexToken& open, const std::string& keyword) {
+        if (scopes_.size() > maxNestingLevels) // scopes_ holds the enclosing dictionaries
+            throw InputError(open.where, "dictionaries nested deeper than " + std::to_string(maxNestingLevels) +
+                                             " levels", keyword);
+        scopes_.push_back(&sub);
+        parseEntries(lexer, sub, &open);
+        scopes_.pop_back();
+    }
+
     // `keyword value...;` or `keyword { ... }`
     void parseEntry(Lexer& lexer, Dictionary& dict, const LexToken& keyword) {
-        if (lexer.peek().kind == Lex::LBrace) {
+        countTokens(1, Added::ByReading, keyword.where, keyword.text, [&] { return "the keyword '" + keyword.text + "'"; });
+        bool isDict = false;
+        {
+            Lexer::ValueOf value(lexer, keyword.text);
+            isDict = lexer.peek().kind == Lex::LBrace;
+        }
+        if (isDict) {
+            countTokens(subDictionaryTokens - 1, Added::ByReading, keyword.where, keyword.text,
+                        [&] { return "the dictionary '" + keyword.text + "'"; });
             const LexToken open = lexer.next();
-            auto sub = std::make_shared<Dictionary>(dict.name_ + "." + keyword.text, keyword.where);
-            scopes_.push_back(sub.get());
-            parseEntries(lexer, *sub, &open);
-            scopes_.pop_back();
+            auto sub = makeDictionary(childName(dict, keyword.text), keyword.where);
+            parseSubDictionary(lexer, *sub, open, keyword.text);
             addEntry(dict, Entry{keyword.text, keyword.where, {}, sub});
             return;
         }
-        std::vector<LexToken> raw = readValue(lexer, keyword, false);
-        addEntry(dict, makeEntry(keyword, std::move(raw), dict));
+        addEntry(dict, makeEntry(keyword, readValue(lexer, keyword, false), dict));
     }
 
     // The raw tokens of a value, up to and including the ';' (which is consumed, not returned).
@@ -456,11 +700,12 @@ private:
     // on a later line means the ';' is missing. (A list may start on the line after the keyword.)
     std::vector<LexToken> readValue(Lexer& lexer, const LexToken& keyword, bool untilEnd) {
         const std::string& kw = keyword.text;
+        const Lexer::ValueOf value(lexer, kw);
         std::vector<LexToken> raw;
         std::vector<SourceLocation> openLists;
         int previousLine = keyword.endLine;
         for (;;) {
-            const LexToken t = lexer.peek();
+            const LexToken& t = lexer.peek(); // valid until lexer.next()
             const bool inList = !openLists.empty();
             auto unclosedList = [&] {
                 return InputError(t.where, "expected ')' to close the list opened at " +
@@ -475,8 +720,9 @@ private:
             if (!inList) {
                 if (t.kind == Lex::Semicolon || (untilEnd && t.kind == Lex::End)) {
                     if (raw.empty()) throw InputError(t.where, "missing value for '" + kw + "' before " + describe(t), kw);
+                    const Lex end = t.kind;
                     lexer.next();
-                    if (untilEnd && t.kind == Lex::Semicolon && lexer.peek().kind != Lex::End)
+                    if (untilEnd && end == Lex::Semicolon && lexer.peek().kind != Lex::End)
                         throw InputError(lexer.peek().where, "unexpected " + describe(lexer.peek()) +
                                                                  " after the value of '" + kw + "'", kw);
                     return raw;
@@ -494,6 +740,8 @@ private:
                 if (inList) throw unclosedList();
                 throw missingSemicolon();
             case Lex::Open:
+                if (openLists.size() >= maxNestingLevels)
+                    throw InputError(t.where, "lists nested deeper than " + std::to_string(maxNestingLevels) + " levels", kw);
                 openLists.push_back(t.where);
                 break;
             case Lex::Close:
@@ -503,6 +751,7 @@ private:
             default:
                 break;
             }
+            countTokens(1, Added::ByReading, t.where, kw, [&] { return "the value of '" + kw + "'"; });
             previousLine = t.endLine;
             raw.push_back(lexer.next());
         }
@@ -515,20 +764,44 @@ private:
         if (raw.size() == 1 && raw.front().kind == Lex::Variable) {
             const Entry& source = resolve(raw.front());
             if (source.isDict()) {
-                e.dict = clone(*source.dict, dict.name_ + "." + keyword.text, keyword.where);
+                countTokens(subDictionaryTokens - 1, Added::BySubstitution, raw.front().where, keyword.text,
+                            [&] { return "copying '$" + raw.front().text + "'"; });
+                const CopyLimits limits{*this, scopes_.size(), raw.front(), keyword.text};
+                e.dict = clone(*source.dict, childName(dict, keyword.text), keyword.where, &limits);
                 return e;
             }
         }
-        for (const LexToken& t : raw) {
+        // Sized first: the token bound is checked before anything is copied, and the value is
+        // allocated once.
+        std::vector<const Entry*> substituted(raw.size(), nullptr);
+        std::size_t size = 0;
+        std::size_t openLists = 0;
+        for (std::size_t i = 0; i < raw.size(); ++i) {
+            const LexToken& t = raw[i];
             if (t.kind != Lex::Variable) {
-                e.tokens.push_back(toToken(t));
+                if (t.kind == Lex::Open) ++openLists;
+                if (t.kind == Lex::Close) --openLists;
+                ++size;
                 continue;
             }
             const Entry& source = resolve(t);
             if (source.isDict())
                 throw InputError(t.where, "'$" + t.text + "' is a dictionary; it can only be the whole value of an entry ('" +
                                               keyword.text + " $" + t.text + ";')", keyword.text);
-            e.tokens.insert(e.tokens.end(), source.tokens.begin(), source.tokens.end());
+            countTokens(source.tokens.size(), Added::BySubstitution, t.where, keyword.text,
+                        [&] { return "substituting '$" + t.text + "'"; });
+            if (openLists + listDepth(source.tokens) > maxNestingLevels)
+                throw InputError(t.where, "lists nested deeper than " + std::to_string(maxNestingLevels) +
+                                              " levels (substituting '$" + t.text + "' here)", keyword.text);
+            substituted[i] = &source;
+            size += source.tokens.size();
+        }
+        e.tokens.reserve(size);
+        for (std::size_t i = 0; i < raw.size(); ++i) {
+            if (substituted[i])
+                e.tokens.insert(e.tokens.end(), substituted[i]->tokens.begin(), substituted[i]->tokens.end());
+            else
+                e.tokens.push_back(toToken(std::move(raw[i])));
         }
         return e;
     }
@@ -543,19 +816,27 @@ private:
         if (after.kind != Lex::Semicolon)
             throw InputError(after.where, "expected ';' after '$" + variable.text + "', found " + describe(after));
         lexer.next();
-        auto copy = clone(*source.dict, dict.name_, dict.where_);
+        // the copy stands at the level of 'dict', which receives its entries; no keyword to name
+        static const std::string noKeyword;
+        const CopyLimits limits{*this, scopes_.size() - 1, variable, noKeyword};
+        auto copy = clone(*source.dict, dict.name_, dict.where_, &limits);
         for (auto& e : copy->entries_) addEntry(dict, std::move(e));
     }
 
     // Looks `path` up in 'd': the keyword itself, else `a.b` as entry b of sub-dictionary a
-    // (recursively). Marks what it finds as used (the file itself uses it).
-    static const Entry* lookupPath(Dictionary& d, const std::string& path) {
-        if (Entry* e = find(d, path)) {
-            d.used_.insert(path);
+    // (recursively). Marks what it finds as used (the file itself uses it). The prefixes before
+    // each '.' are hashed incrementally: one pass over the path per dictionary searched.
+    static const Entry* lookupPath(Dictionary& d, std::string_view path) {
+        if (Entry* e = d.find(path)) {
+            d.used_.emplace(path);
             return e;
         }
-        for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.', dot + 1)) {
-            Entry* head = find(d, path.substr(0, dot));
+        std::size_t prefixHash = detail::KeywordHash::seed;
+        std::size_t hashedLength = 0;
+        for (auto dot = path.find('.'); dot != std::string_view::npos; dot = path.find('.', dot + 1)) {
+            prefixHash = detail::KeywordHash::extend(prefixHash, path.substr(hashedLength, dot - hashedLength));
+            hashedLength = dot;
+            Entry* head = d.find(detail::HashedKeyword{path.substr(0, dot), prefixHash});
             if (!head || !head->isDict()) continue;
             if (const Entry* found = lookupPath(*head->dict, path.substr(dot + 1))) {
                 d.used_.insert(head->keyword);
@@ -591,36 +872,68 @@ private:
         const fs::path includingDir = fs::path(lexer.file()).parent_path();
         const fs::path file =
             relative.is_absolute() || includingDir.empty() ? relative : (includingDir / relative).lexically_normal();
-        std::string text;
-        if (!readWholeFile(file, text)) {
+        FileContents contents = readWholeFile(file);
+        if (contents.status == FileContents::Status::TooLarge)
+            throw InputError(directive.where, "include file '" + file.string() + "' " + contents.tooLargeMessage());
+        if (contents.status == FileContents::Status::CannotOpen) {
             if (optional) return;
             throw InputError(directive.where, "cannot open include file '" + file.string() + "'");
         }
         if (includeDepth_ >= maxIncludeDepth)
             throw InputError(directive.where, "#include nested more than " + std::to_string(maxIncludeDepth) +
                                                   " deep (does '" + file.string() + "' include itself?)");
+        if (contents.size > maxTotalFileBytes - std::min(bytesRead_, maxTotalFileBytes))
+            throw InputError(directive.where, "including '" + file.string() + "' makes the files read for this dictionary exceed " +
+                                                  std::to_string(maxTotalFileBytes >> 20) + " MiB (repeated #includes count each time)");
+        bytesRead_ += contents.size;
         ++includeDepth_;
-        Lexer included(std::move(text), file.string());
+        Lexer included(std::move(contents.text), file.string());
         parseEntries(included, dict, nullptr);
         --includeDepth_;
     }
 
     std::vector<Dictionary*> scopes_;
     int includeDepth_ = 0;
+    std::size_t tokenCount_ = 0;       // against maxTokens
+    std::size_t substitutedCount_ = 0; // against maxSubstitutedTokens
+    std::uintmax_t bytesRead_ = 0;   // against maxTotalFileBytes
 };
 
 // ---------------------------------------------------------------------------------------------
 // Dictionary
 
 Dictionary::Dictionary(std::string scopedName, SourceLocation where)
-    : name_(std::move(scopedName)), where_(std::move(where)) {}
+    : name_(std::make_shared<const detail::ScopedName>(nullptr, std::move(scopedName))), where_(std::move(where)) {}
+
+const std::string& Dictionary::name() const {
+    static const std::string unnamed;
+    return name_ ? name_->text() : unnamed;
+}
+
+template <class Key>
+const Entry* Dictionary::find(const Key& keyword) const {
+    const auto it = index_.find(keyword);
+    return it == index_.end() ? nullptr : &entries_[it->second];
+}
+
+template <class Key>
+Entry* Dictionary::find(const Key& keyword) {
+    return const_cast<Entry*>(std::as_const(*this).find(keyword));
+}
+
+void Dictionary::append(Entry entry) {
+    index_.emplace(entry.keyword, entries_.size());
+    entries_.push_back(std::move(entry));
+}
 
 Dictionary Dictionary::fromFile(const fs::path& file) {
     const std::string path = file.string();
-    std::string text;
-    if (!readWholeFile(file, text)) throw InputError({path, 0, 0}, "cannot open file");
+    FileContents contents = readWholeFile(file);
+    if (contents.status == FileContents::Status::TooLarge)
+        throw InputError({path, 0, 0}, "file " + contents.tooLargeMessage());
+    if (contents.status != FileContents::Status::Read) throw InputError({path, 0, 0}, "cannot open file");
     Dictionary d(file.filename().string(), {path, 0, 0});
-    DictionaryParser({&d}).parseText(d, text, path);
+    DictionaryParser({&d}).parseText(d, std::move(contents.text), path);
     return d;
 }
 
@@ -646,11 +959,7 @@ std::vector<std::string> Dictionary::keywords() const {
     return out;
 }
 
-const Entry* Dictionary::findEntry(const std::string& keyword) const {
-    for (const auto& e : entries_)
-        if (e.keyword == keyword) return &e;
-    return nullptr;
-}
+const Entry* Dictionary::findEntry(const std::string& keyword) const { return find(std::string_view(keyword)); }
 
 SourceLocation Dictionary::locationOf(const std::string& keyword) const {
     const Entry* e = findEntry(keyword);
@@ -660,7 +969,7 @@ SourceLocation Dictionary::locationOf(const std::string& keyword) const {
 const Entry& Dictionary::requireEntry(const std::string& keyword) const {
     markUsed(keyword);
     if (const Entry* e = findEntry(keyword)) return *e;
-    std::string message = "keyword '" + keyword + "' is missing in " + name_;
+    std::string message = "keyword '" + keyword + "' is missing in " + name();
     const std::string suggestion = closestMatch(keyword, keywords());
     if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
     throw InputError(where_, message, keyword);
@@ -669,7 +978,7 @@ const Entry& Dictionary::requireEntry(const std::string& keyword) const {
 namespace {
 [[noreturn]] void notADictionary(const Dictionary& d, const Entry& e) {
     throw InputError(e.where, "'" + e.keyword + "' in " + d.name() + " must be a dictionary ('" + e.keyword +
-                                  " { ... }'), found the value '" + tokensText(e.tokens) + "'",
+                                  " { ... }'), found the value '" + shownTokensText(e.tokens, 0, e.tokens.size()) + "'",
                      e.keyword);
 }
 } // namespace
@@ -694,7 +1003,7 @@ void Dictionary::checkAllKeywordsUsed() const {
     for (const auto& e : entries_) {
         if (e.keyword == headerKeyword || used_.count(e.keyword)) continue;
         const std::vector<std::string> valid(used_.begin(), used_.end()); // std::set: sorted
-        std::string message = "unknown keyword '" + e.keyword + "' in " + name_;
+        std::string message = "unknown keyword '" + e.keyword + "' in " + name();
         const std::string suggestion = closestMatch(e.keyword, valid);
         if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
         message += "; valid keywords: (" + join(valid) + ")";
@@ -715,7 +1024,7 @@ std::string Dictionary::getWordOrDefault(const std::string& keyword, const std::
                                          const std::string& defaultValue) const {
     markUsed(keyword);
     if (found(keyword)) return getWord(keyword, allowed);
-    logDefaultOnce(name_ + "." + keyword, isWord(defaultValue) ? defaultValue : quote(defaultValue));
+    logDefaultOnce(name() + "." + keyword, isWord(defaultValue) ? defaultValue : quote(defaultValue));
     return defaultValue;
 }
 
@@ -731,12 +1040,16 @@ void Dictionary::setDict(const std::string& keyword, const Dictionary& dict) {
     if (!isWord(keyword))
         throw InputError({"<override>", 0, 0}, "invalid keyword '" + keyword +
                                                    "' (letters, digits and _ . : < > - + only)");
-    auto copy = DictionaryParser::clone(dict, name_ + "." + keyword, dict.where());
+    auto copy = DictionaryParser::clone(dict, DictionaryParser::childName(*this, keyword), dict.where());
     DictionaryParser::replaceEntry(*this, Entry{keyword, dict.where(), {}, copy});
 }
 
 void Dictionary::remove(const std::string& keyword) {
-    std::erase_if(entries_, [&](const Entry& e) { return e.keyword == keyword; });
+    const auto it = index_.find(std::string_view(keyword));
+    if (it == index_.end()) return;
+    entries_.erase(entries_.begin() + static_cast<std::ptrdiff_t>(it->second));
+    index_.clear();
+    for (std::size_t i = 0; i < entries_.size(); ++i) index_.emplace(entries_[i].keyword, i);
 }
 
 std::string Dictionary::toString(int indent) const {
@@ -772,18 +1085,18 @@ namespace {
 std::string describeValue(const std::vector<Token>& tokens, std::size_t i) {
     const Token& t = tokens[i];
     switch (t.kind) {
-    case Token::Kind::Word: return "word '" + t.text + "'";
-    case Token::Kind::Number: return "number " + t.text;
-    case Token::Kind::String: return "string " + quote(t.text);
+    case Token::Kind::Word: return "word '" + shownTokensText(tokens, i, i + 1) + "'";
+    case Token::Kind::Number: return "number " + shownTokensText(tokens, i, i + 1);
+    case Token::Kind::String: return "string " + shownTokensText(tokens, i, i + 1);
     case Token::Kind::Close: return "')'";
     case Token::Kind::Open: {
         int depth = 0;
         std::size_t end = i;
-        for (; end < tokens.size(); ++end) {
+        for (; end < tokens.size() && end - i <= maxShownTokens; ++end) { // no further than is shown
             if (tokens[end].kind == Token::Kind::Open) ++depth;
             if (tokens[end].kind == Token::Kind::Close && --depth == 0) break;
         }
-        return "list " + tokensText(tokens, i, end + 1);
+        return "list " + shownTokensText(tokens, i, end + 1);
     }
     }
     return "?";
@@ -810,7 +1123,7 @@ public:
     }
 
     [[noreturn]] void outOfRange(const Token& t, const std::string& range) const {
-        throw InputError(t.where, "number " + t.text + " for '" + keyword() + "' is out of range (" + range + ")", keyword());
+        throw InputError(t.where, "number " + shortText(t.text) + " for '" + keyword() + "' is out of range (" + range + ")", keyword());
     }
 
     // Nothing may follow token 'end' - 1.
@@ -1002,7 +1315,7 @@ template <> std::string formatValue<Vec3>(const Vec3& v) {
 template <class T>
 std::string formatList(const std::vector<T>& values) {
     std::string out = "(";
-    for (std::size_t i = 0; i < values.size(); ++i) out += (i ? " " : "") + formatValue(values[i]);
+    for (std::size_t i = 0; i < values.size(); ++i) out.append(i ? " " : "").append(formatValue(values[i]));
     return out + ")";
 }
 template <> std::string formatValue<std::vector<double>>(const std::vector<double>& v) { return formatList(v); }
@@ -1020,7 +1333,7 @@ template <class T>
 T Dictionary::getOrDefault(const std::string& keyword, const T& defaultValue) const {
     markUsed(keyword);
     if (found(keyword)) return get<T>(keyword);
-    logDefaultOnce(name_ + "." + keyword, formatValue(defaultValue));
+    logDefaultOnce(name() + "." + keyword, formatValue(defaultValue));
     return defaultValue;
 }
 

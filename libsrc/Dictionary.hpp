@@ -9,7 +9,16 @@
 // keyword counts as used). A later duplicate keyword overrides the earlier one; a duplicate
 // dictionary is merged into the earlier one (OpenFOAM's default). Outside parentheses a value
 // ends on its line: a value token on a new line is reported as a missing ';'. Every parse error
-// throws InputError naming file:line:column.
+// throws InputError naming file:line:column (columns count UTF-8 characters, not bytes), and the
+// keyword when it happens in a keyword's value.
+//
+// Bounds, so that no input can crash the solver or exhaust its memory (each is an InputError):
+// sub-dictionaries and lists nest at most 256 levels deep (a copied `$dict` counts at its new
+// depth), #include files at most 32; a file is at most 64 MiB, and the files read for one
+// dictionary (#include repeats counted) at most 256 MiB; reading one dictionary handles at most
+// 10^7 tokens (each keyword and value token counts 1, a sub-dictionary 5; read, #included or
+// substituted; about 1 GB), of which `$name` substitution and `$dict` copies may add 10^5.
+// Parsing and lookups take time linear in the input: keywords are hashed.
 //
 // Lookups are typed. A required keyword that is missing, or a value of the wrong type, throws
 // InputError naming file, line and keyword. getOrDefault() echoes a used default once to the
@@ -27,6 +36,8 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace spindrift {
@@ -39,6 +50,34 @@ struct Token {
 };
 
 class Dictionary;
+
+namespace detail {
+// The keyword index of a Dictionary hashes with FNV-1a: the hash of a prefix extends to that of a
+// longer prefix, so all the prefixes of a `$a.b.c` path are hashed in one pass. (The hash is
+// deliberately not noexcept: libstdc++ then stores each key's hash instead of rehashing keys
+// while it walks a bucket.)
+struct HashedKeyword {
+    std::string_view text;
+    std::size_t hash;
+};
+struct KeywordHash {
+    using is_transparent = void;
+    static constexpr std::size_t seed = 14695981039346656037ull;
+    static std::size_t extend(std::size_t hash, std::string_view text) noexcept {
+        for (const char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+        return hash;
+    }
+    std::size_t operator()(std::string_view text) const { return extend(seed, text); }
+    std::size_t operator()(const HashedKeyword& key) const { return key.hash; }
+};
+struct KeywordEqual {
+    using is_transparent = void;
+    bool operator()(std::string_view a, std::string_view b) const noexcept { return a == b; }
+    bool operator()(const HashedKeyword& a, std::string_view b) const noexcept { return a.text == b; }
+    bool operator()(std::string_view a, const HashedKeyword& b) const noexcept { return a == b.text; }
+};
+struct ScopedName; // "controlDict.pressure", joined only when asked for (Dictionary.cpp)
+} // namespace detail
 
 // One `keyword value;` or `keyword { ... }` entry.
 struct Entry {
@@ -60,7 +99,7 @@ public:
     static Dictionary fromString(const std::string& text, const std::string& fileName = "<string>");
 
     // Name for messages: "sphSchemes" for a top-level file, "sphSchemes.pressure" below.
-    const std::string& name() const { return name_; }
+    const std::string& name() const;
     const SourceLocation& where() const { return where_; }
 
     bool found(const std::string& keyword) const;
@@ -107,11 +146,17 @@ public:
 
 private:
     friend class DictionaryParser;
-    const Entry& requireEntry(const std::string& keyword) const;
+    using Index = std::unordered_map<std::string, std::size_t, detail::KeywordHash, detail::KeywordEqual>;
 
-    std::string name_;
+    const Entry& requireEntry(const std::string& keyword) const;
+    template <class Key> const Entry* find(const Key& keyword) const; // Key: string_view or HashedKeyword
+    template <class Key> Entry* find(const Key& keyword);
+    void append(Entry entry);
+
+    std::shared_ptr<const detail::ScopedName> name_;
     SourceLocation where_;
-    std::vector<Entry> entries_;
+    std::vector<Entry> entries_; // in file order
+    Index index_;                // keyword -> position in entries_
     mutable std::set<std::string> used_;
 };
 

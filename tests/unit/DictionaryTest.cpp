@@ -341,6 +341,12 @@ dotted $U.x;
     EXPECT_EQ(d.get<int>("dotted"), 4); // a keyword containing '.' is found as a whole first
 }
 
+TEST(DictionarySubstitution, ScopedNameFindsSubDictionariesWhoseKeywordHasADot) {
+    // "a.b" is tried as a keyword after "a" (the prefixes are hashed incrementally)
+    const Dictionary d = parse("a.b { c { d 5; } }\nx $a.b.c.d;\n");
+    EXPECT_EQ(d.get<int>("x"), 5);
+}
+
 TEST(DictionarySubstitution, DictionaryAsValueIsCopied) {
     Dictionary d = parse(R"(
 wall { type container; layers 3; }
@@ -663,6 +669,22 @@ TEST(DictionaryModify, SetDictCopiesAndRenamesAndRemoveDeletes) {
     EXPECT_EQ(d.keywords(), (std::vector<std::string>{"b", "sub"}));
 }
 
+TEST(DictionaryModify, RemoveKeepsTheOtherKeywordsFindable) {
+    Dictionary d = parse("a 1; b 2; c 3; d 4;");
+    d.remove("b");
+    EXPECT_FALSE(d.found("b"));
+    EXPECT_EQ(d.get<int>("c"), 3);
+    EXPECT_EQ(d.get<int>("d"), 4);
+    d.set("b", "5");
+    EXPECT_EQ(d.keywords(), (std::vector<std::string>{"a", "c", "d", "b"}));
+    EXPECT_EQ(d.get<int>("b"), 5);
+    Dictionary copy = d;
+    copy.remove("a");
+    EXPECT_TRUE(d.found("a"));
+    EXPECT_EQ(copy.get<int>("d"), 4);
+    EXPECT_EQ(copy.get<int>("b"), 5);
+}
+
 TEST(DictionaryWrite, ToStringWritesOpenFoamSyntax) {
     const Dictionary d = parse("a 1;\ng (0 -9.81 0);\ns \"x y\";\nsub { t w; }\n");
     EXPECT_EQ(d.toString(),
@@ -707,6 +729,169 @@ sphSchemes
     EXPECT_EQ(back.subDict("extra").get<int>("x"), 1);
     EXPECT_TRUE(back.isDict("FoamFile"));
     EXPECT_EQ(back.keywords(), d.keywords());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Limits: nesting, size, expansion and many keywords are bounded and fail with an InputError,
+// never a crash, a hang or std::bad_alloc.
+
+namespace {
+// 'levels' nested sub-dictionaries "d{d{...", 'inner' in the innermost, all closed.
+std::string nestedDictionaries(int levels, const std::string& inner) {
+    std::string text;
+    for (int i = 0; i < levels; ++i) text += "d{";
+    return text + inner + std::string(static_cast<std::size_t>(levels), '}');
+}
+
+const Dictionary& innermost(const Dictionary& d, int levels) {
+    const Dictionary* inner = &d;
+    for (int i = 0; i < levels; ++i) inner = &inner->subDict("d");
+    return *inner;
+}
+} // namespace
+
+TEST(DictionaryLimits, DeeplyNestedDictionariesAreAnErrorNotAStackOverflow) {
+    // 10,000 levels overflowed the stack (exit 139, no message). The 257th '{' is at column 514.
+    std::string text;
+    for (int i = 0; i < 10000; ++i) text += "d{";
+    EXPECT_EQ(errorOf([&] { parse(text); }),
+              testFile + ":1:514: error: dictionaries nested deeper than 256 levels (keyword 'd')");
+}
+
+TEST(DictionaryLimits, DictionariesMayNest256Levels) {
+    const Dictionary d = parse(nestedDictionaries(256, "x 1;"));
+    EXPECT_EQ(innermost(d, 256).get<int>("x"), 1);
+    EXPECT_CONTAINS(errorOf([&] { parse(nestedDictionaries(257, "x 1;")); }),
+                    ":1:514: error: dictionaries nested deeper than 256 levels");
+}
+
+TEST(DictionaryLimits, DeeplyNestedListsAreAnError) {
+    EXPECT_EQ(errorOf([&] { parse("v " + std::string(10000, '(') + ";\n"); }),
+              testFile + ":1:259: error: lists nested deeper than 256 levels (keyword 'v')");
+    const Dictionary d = parse("v " + std::string(256, '(') + "1" + std::string(256, ')') + ";\n");
+    EXPECT_EQ(d.findEntry("v")->tokens.size(), 513u);
+}
+
+TEST(DictionaryLimits, SubstitutedListsCountAtTheirNewDepth) {
+    const auto nestedList = [](int levels, const std::string& inner) {
+        return std::string(std::size_t(levels), '(') + inner + std::string(std::size_t(levels), ')');
+    };
+    const std::string a = "a " + nestedList(200, "1") + ";\n";
+    EXPECT_EQ(errorOf([&] { parse(a + "b " + nestedList(100, "$a") + ";\n"); }),
+              testFile + ":2:103: error: lists nested deeper than 256 levels (substituting '$a' here) (keyword 'b')");
+    EXPECT_EQ(parse(a + "b " + nestedList(56, "$a") + ";\n").findEntry("b")->tokens.size(), 513u);
+}
+
+TEST(DictionaryLimits, CopiedDictionariesCountAtTheirNewDepth) {
+    // 'src' spans 200 levels; copied 101 levels down it would reach level 300
+    const std::string src = "src{" + nestedDictionaries(199, "x 1;") + "}\n";
+    EXPECT_EQ(errorOf([&] { parse(src + nestedDictionaries(100, "copy $src;")); }),
+              testFile + ":2:206: error: dictionaries nested deeper than 256 levels (copying '$src' here) "
+                         "(keyword 'copy')");
+    EXPECT_EQ(errorOf([&] { parse(src + nestedDictionaries(100, "$src;")); }),
+              testFile + ":2:201: error: dictionaries nested deeper than 256 levels (copying '$src' here)");
+    // 51 + 199 = 250 levels (the copy) and 50 + 199 (the merge) are fine
+    const Dictionary d = parse(src + nestedDictionaries(50, "copy $src; $src;"));
+    EXPECT_EQ(innermost(innermost(d, 50).subDict("copy"), 199).get<int>("x"), 1);
+    EXPECT_EQ(innermost(d, 249).get<int>("x"), 1);
+}
+
+TEST(DictionaryLimits, TwoHundredThousandKeywordsParseAndAreFound) {
+    // Parsing and lookups are linear (they were quadratic: 100k keywords took a minute); times are
+    // measured outside the tests, never asserted.
+    constexpr int n = 200000;
+    std::string text;
+    for (int i = 0; i < n; ++i) text += "key" + std::to_string(i) + " " + std::to_string(i) + ";\n";
+    text += "key7 -7;\nlast $key199999;\n";
+    const Dictionary d = parse(text);
+    const std::vector<std::string> keywords = d.keywords();
+    ASSERT_EQ(keywords.size(), std::size_t(n) + 1);
+    EXPECT_EQ(keywords[7], "key7"); // a duplicate keeps the place of the first
+    EXPECT_EQ(keywords.back(), "last");
+    for (int i = 0; i < n; ++i) ASSERT_EQ(d.get<int>(keywords[std::size_t(i)]), i == 7 ? -7 : i) << keywords[std::size_t(i)];
+    EXPECT_EQ(d.get<int>("last"), n - 1);
+    EXPECT_NO_THROW(d.checkAllKeywordsUsed());
+    EXPECT_CONTAINS(errorOf([&] { d.get<int>("key200000"); }), "keyword 'key200000' is missing in testDict");
+}
+
+TEST(DictionaryLimits, SubstitutionThatKeepsDoublingStopsAtItsBound) {
+    // a0 x; a1 ($a0 $a0); a2 ($a1 $a1); ...: 40 levels would be 3·2^40 tokens, which ended in
+    // std::bad_alloc.
+    std::string text = "a0 x;\n";
+    for (int i = 1; i <= 40; ++i) {
+        const std::string previous = std::string("$a").append(std::to_string(i - 1));
+        const std::string current = std::string("a").append(std::to_string(i));
+        text.append(current).append(" (").append(previous).append(" ").append(previous).append(");\n");
+    }
+    EXPECT_EQ(errorOf([&] { Dictionary::fromString(text, "doubling"); }),
+              "doubling:16:6: error: substituting '$a14' makes the substitutions in this dictionary exceed 100000 "
+              "tokens (keywords, values and sub-dictionaries) (keyword 'a15')");
+    // below the bound the same substitutions are made in full
+    const Dictionary d = Dictionary::fromString(text.substr(0, text.find("a15 ")), "doubling");
+    EXPECT_EQ(d.findEntry("a14")->tokens.size(), 3u * (1u << 14) - 2u);
+}
+
+TEST(DictionaryLimits, CopiesOfDictionariesStopAtTheSubstitutionBound) {
+    // each d<i> holds two copies of d<i-1>: 2^i copies of d0
+    const auto doubling = [](const std::string& d0) {
+        std::string text = d0;
+        for (int i = 1; i <= 20; ++i) {
+            const std::string previous = std::string("$d").append(std::to_string(i - 1));
+            const std::string current = std::string("d").append(std::to_string(i));
+            text.append(current).append(" { a ").append(previous).append("; b ").append(previous).append("; }\n");
+        }
+        return text;
+    };
+    std::string list = "d0 { v (";
+    for (int i = 0; i < 1000; ++i) list += " 1";
+    EXPECT_EQ(errorOf([&] { Dictionary::fromString(doubling(list + "); }\n"), "copies"); }),
+              "copies:7:15: error: copying '$d5' makes the substitutions in this dictionary exceed 100000 tokens "
+              "(keywords, values and sub-dictionaries) (keyword 'b')");
+    // a sub-dictionary counts as 5 tokens, empty or not
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromString(doubling("d0 { }\n"), "copies"); }),
+                    "copies:14:9: error: copying '$d12' makes the substitutions in this dictionary exceed 100000 tokens");
+}
+
+TEST(DictionaryLimits, ReadingStopsAtTheTokenBound) {
+    // 11 values of a million tokens each (a later one replaces the earlier): every token read counts
+    std::string line = "v (";
+    for (int i = 0; i < 999'999; ++i) line += " 1";
+    line += ");\n";
+    std::string text;
+    for (int i = 0; i < 11; ++i) text += line;
+    const std::string message = errorOf([&] { Dictionary::fromString(text, "many"); });
+    EXPECT_CONTAINS(message, "many:10:");
+    EXPECT_CONTAINS(message, "error: the value of 'v' makes the dictionary exceed 10000000 tokens (keywords, values and "
+                             "sub-dictionaries; read, #included or substituted) (keyword 'v')");
+}
+
+TEST(DictionaryFiles, FileOverTheSizeLimitGivesItsSizeAndTheLimit) {
+    TempDir dir;
+    const fs::path big = dir.writeFile("system/big", "");
+    fs::resize_file(big, std::uintmax_t(65) << 20); // sparse: no disk space used
+    EXPECT_EQ(errorOf([&] { Dictionary::fromFile(big); }),
+              big.string() + ": error: file is 65.0 MiB (68157440 bytes); a dictionary file may be at most 64 MiB");
+    const fs::path file = dir.writeFile("system/controlDict", "a 1;\n#include \"big\"\n");
+    EXPECT_EQ(errorOf([&] { Dictionary::fromFile(file); }),
+              file.string() + ":2:1: error: include file '" + big.lexically_normal().string() +
+                  "' is 65.0 MiB (68157440 bytes); a dictionary file may be at most 64 MiB");
+    // 64 MiB are read (and refused for what they hold: NUL bytes)
+    fs::resize_file(big, std::uintmax_t(64) << 20);
+    EXPECT_EQ(errorOf([&] { Dictionary::fromFile(big); }), big.string() + ":1:1: error: unexpected character byte 0x00");
+}
+
+TEST(DictionaryFiles, RepeatedIncludesAreBoundedInTotal) {
+    TempDir dir;
+    dir.writeFile("system/comment", "// " + std::string(std::size_t(60) << 20, '-') + "\n"); // 60 MiB, no entry
+    std::string text;
+    for (int i = 0; i < 5; ++i) text += "#include \"comment\"\n";
+    const fs::path file = dir.writeFile("system/controlDict", text + "a 1;\n");
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromFile(file); }),
+                    file.string() + ":5:1: error: including '");
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromFile(file); }),
+                    "comment' makes the files read for this dictionary exceed 256 MiB (repeated #includes count each time)");
+    const fs::path four = dir.writeFile("system/four", text.substr(0, text.size() / 5 * 4) + "a 1;\n");
+    EXPECT_EQ(Dictionary::fromFile(four).get<int>("a"), 1);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -768,6 +953,36 @@ const std::vector<BadInput> badInputs = {
     {"UnexpectedCharacter", "a 1;\nb = 2;\n", at + "2:3: error: unexpected character '='"},
     {"NumberAsKeyword", "1 2;\n", at + "1:1: error: expected a keyword, found '1'"},
     {"DollarWithoutName", "a $;\n", at + "1:3: error: expected a keyword name after '$'"},
+    // --- a value spoiled by a character: the error names the keyword too
+    {"DecimalComma", "endTime 0,02;\n", at + "1:9: error: '0,02' is not a number (use a decimal point) (keyword 'endTime')"},
+    {"DecimalCommaInList", "g (0 -9,81 0);\n", at + "1:6: error: '-9,81' is not a number (use a decimal point) (keyword 'g')"},
+    {"CommasBetweenListElements", "g (0,1,0);\n",
+     at + "1:5: error: unexpected character ',' (list elements are separated by spaces, not commas) (keyword 'g')"},
+    {"CommaAfterListElement", "g (0, -9.81, 0);\n",
+     at + "1:5: error: unexpected character ',' (list elements are separated by spaces, not commas) (keyword 'g')"},
+    {"NonAsciiCharacterInValue", "endTime 1.5\u00b5s;\n",
+     at + "1:12: error: unexpected character '\u00b5' (U+00B5; only comments and quoted strings may hold non-ASCII "
+          "text) (keyword 'endTime')"},
+    {"FourByteCharacterInValue", "a \U0001F30A;\n", at + "1:3: error: unexpected character '\U0001F30A' (U+1F30A;"},
+    {"InvalidUtf8ByteInValue", "endTime 1\xff;\n", at + "1:10: error: unexpected character byte 0xff (not UTF-8 text) (keyword 'endTime')"},
+    {"NonAsciiCharacterInKeyword", "endTim\u00e9 1;\n", at + "1:7: error: unexpected character '\u00e9' (U+00E9;"},
+    {"NonAsciiCharacterAtKeywordPosition", "a 1;\n\u00e9 2;\n", at + "2:1: error: unexpected character '\u00e9' (U+00E9; only comments and quoted strings may hold non-ASCII text)"},
+    {"UnterminatedStringInValueNamesTheKeyword", "name \"abc;\n",
+     at + "1:6: error: unterminated string: missing closing '\"' on this line (keyword 'name')"},
+    // --- columns count characters, not bytes
+    {"ColumnAfterUtf8Comment", "/* gr\u00f6\u00dfe */ endTime abc;\n", at + "1:21: error: expected a number for 'endTime', found word 'abc'",
+     [](Dictionary& d) { d.get<double>("endTime"); }},
+    {"ColumnAfterUtf8String", "title \"\u65e5\u672c \U0001F30A\"; x = 1;\n", at + "1:17: error: unexpected character '=' (keyword 'x')"},
+    {"LongListIsShownShortened", "v (1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);\n",
+     at + "1:3: error: expected a number for 'v', found list (1 2 3 4 5 6 7 8 9 10 11 ... (keyword 'v')",
+     [](Dictionary& d) { d.get<double>("v"); }},
+    {"LongWordIsShownShortened", "v " + std::string(100, 'w') + ";\n",
+     at + "1:3: error: expected a number for 'v', found word '" + std::string(80, 'w') + " ...' (keyword 'v')",
+     [](Dictionary& d) { d.get<double>("v"); }},
+    {"LongValueWhereSubDictionaryExpectedIsShownShortened", "p (1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);\n",
+     at + "1:1: error: 'p' in testDict must be a dictionary ('p { ... }'), found the value '(1 2 3 4 5 6 7 8 9 10 11 ...'",
+     [](Dictionary& d) { d.subDict("p"); }},
+    {"EndOfFileColumnAfterUtf8", "a \"\u00e9\"\n", at + "1:6: error: expected ';' after the value of 'a', found end of file"},
     // --- directives
     {"UnknownDirective", "#inputMode merge\n", at + "1:1: error: unknown directive '#inputMode'"},
     {"IncludeWithoutQuotedName", "#include common\n", at + "1:10: error: expected a quoted file name after '#include'"},
