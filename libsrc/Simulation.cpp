@@ -467,10 +467,17 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
 }
 
 void Simulation::write() {
-    // fixed walls once (later times refer to them), moving walls at every written time
+    // fixed walls once (later times refer to them), moving walls at every written time; a wall
+    // whose boundary model mirrors the fluid's pressure has no pressure nor density of its own
+    // (the arrays hold nothing meaningful): they are left out rather than written as 0
     std::vector<const ParticleSet*> walls;
-    for (const auto& w : scene_.walls)
+    for (auto& w : scene_.walls) {
+        if (w.pressureMirrored) {
+            w.particles.setUndefined("pressure");
+            w.particles.setUndefined("density");
+        }
         if (w.moving() || !staticWallsWritten_) walls.push_back(&w.particles);
+    }
     staticWallsWritten_ = true;
     writer_->write(scene_.time, scene_.fluid, walls, writeFields_, {{"uniform/time", timeFile()}});
     ++writes_;
