@@ -7,6 +7,8 @@
 
 #include <boost/program_options.hpp>
 #include <sys/resource.h>
+#include <unistd.h>
+#include <ctime>
 #include <iostream>
 #ifdef _OPENMP
 #include <omp.h>
@@ -41,8 +43,20 @@ void listModels(const std::string& only) {
     }
 }
 
+std::string startedLine() {
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    localtime_r(&now, &local);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", &local);
+    char host[256] = "?";
+    gethostname(host, sizeof host - 1);
+    return std::string(date) + " on " + host + ", pid " + std::to_string(getpid());
+}
+
 void banner(const Simulation& sim, int threads) {
     const auto& s = const_cast<Simulation&>(sim).scene();
+    log::Line() << "Started   : " << startedLine();
     log::Line() << "Case      : " << sim.caseFiles().dir.string();
     log::Line() << "Threads   : " << threads;
     std::ostringstream walls;
@@ -60,6 +74,7 @@ void banner(const Simulation& sim, int threads) {
 } // namespace
 
 int main(int argc, char** argv) {
+    log::installFatalSignalHandlers();
     po::options_description options("Usage: spindrift [options]\nOptions");
     options.add_options()
         ("help", "print this help and exit")
@@ -86,6 +101,7 @@ int main(int argc, char** argv) {
             listModels(vm["listModels"].as<std::string>());
             return 0;
         }
+        stopAtOnceOnSignalsDuringSetUp();
         int threads = 1;
 #ifdef _OPENMP
         if (vm.count("threads")) {
