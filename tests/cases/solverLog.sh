@@ -26,6 +26,7 @@ setEntry "$work/short" writeInterval 0.005
 "$work/short/Allrun" > /dev/null
 log=$work/short/log.spindrift
 head -n 12 "$log"
+grep -q "^Spindrift : " "$log" || fail "no version line"
 grep -Eq "^Started   : [0-9]{4}-[0-9]{2}-[0-9]{2} [0-9:]{8} on " "$log" || fail "no start date line"
 steps=$(stepsOf "$log")
 [ -n "$steps" ] || fail "no End line"
