@@ -80,7 +80,7 @@ private:
 
 bool selected(const std::string& name, const FieldOptions& options,
               const std::vector<std::string>& fieldNames) {
-    if (options.scratch) return false;
+    if (options.scratch || options.undefined) return false;
     if (options.restart) return true;
     if (fieldNames.empty()) return options.output;
     return std::find(fieldNames.begin(), fieldNames.end(), name) != fieldNames.end();

@@ -34,7 +34,7 @@ public:
     // their sets), then rewrites the .pvd. A wall written once (a fixed wall) is referenced from
     // every later time: the .pvd points each wall's block to the newest <name>.vtp at or before
     // each time. 'fieldNames': arrays to write besides 'id' (empty = every field flagged
-    // output); fields flagged restart are always written, scratch fields never.
+    // output); fields flagged restart are always written, scratch and undefined fields never.
     // 'extraFiles': further files written into the time directory before it is renamed
     // (relative path, content), e.g. uniform/time with the exact time and step for restarts.
     void write(double time, const ParticleSet& fluid, const std::vector<const ParticleSet*>& walls,

@@ -24,6 +24,7 @@ std::vector<Scalar>& ParticleSet::addScalar(const std::string& name, FieldOption
             f->options.output |= options.output;
             f->options.restart |= options.restart;
             f->options.scratch &= options.scratch;
+            f->options.undefined |= options.undefined;
             return f->data;
         }
     scalars_.push_back(std::make_unique<ScalarField>(ScalarField{name, options, {}}));
@@ -37,6 +38,7 @@ std::vector<Vec3>& ParticleSet::addVector(const std::string& name, FieldOptions 
             f->options.output |= options.output;
             f->options.restart |= options.restart;
             f->options.scratch &= options.scratch;
+            f->options.undefined |= options.undefined;
             return f->data;
         }
     vectors_.push_back(std::make_unique<VectorField>(VectorField{name, options, {}}));
@@ -62,6 +64,13 @@ const std::vector<Vec3>* ParticleSet::findVector(const std::string& name) const 
 }
 bool ParticleSet::hasField(const std::string& name) const {
     return name == "id" || findScalar(name) || findVector(name);
+}
+
+void ParticleSet::setUndefined(const std::string& name) {
+    for (auto& f : scalars_)
+        if (f->name == name) f->options.undefined = true;
+    for (auto& f : vectors_)
+        if (f->name == name) f->options.undefined = true;
 }
 
 namespace {

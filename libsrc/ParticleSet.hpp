@@ -31,6 +31,9 @@ struct FieldOptions {
     bool restart = false; // needed to restart (written even when not selected for output)
     bool scratch = false; // a model's per-particle working data: re-sorted with the particles,
                           // never written, not kept in the last-good-state snapshot
+    bool undefined = false; // the set has no value of its own (a wall's pressure and density when
+                            // the boundary model mirrors the fluid's): never written, not even
+                            // when named in writeFields, so that no viewer shows a false 0
 };
 
 struct ScalarField {
@@ -80,6 +83,8 @@ public:
     const std::vector<Scalar>* findScalar(const std::string& name) const;
     const std::vector<Vec3>* findVector(const std::string& name) const;
     bool hasField(const std::string& name) const;
+    // Flags an existing field as having no value of its own in this set (FieldOptions::undefined).
+    void setUndefined(const std::string& name);
 
     const std::vector<std::unique_ptr<ScalarField>>& scalarFields() const { return scalars_; }
     const std::vector<std::unique_ptr<VectorField>>& vectorFields() const { return vectors_; }

@@ -7,9 +7,13 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <fstream>
 #include <cmath>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -296,6 +300,12 @@ void Simulation::readRunControls(const Dictionary& control) {
     if (!(blowUpDensityError_ > 0))
         throw InputError(control.locationOf("blowUpDensityError"), "blowUpDensityError must be positive",
                          "blowUpDensityError");
+    logInterval_ = control.found("logInterval") ? control.get<int>("logInterval") : 0; // 0: automatic (run())
+    if (control.found("logInterval") && logInterval_ < 1)
+        throw InputError(control.locationOf("logInterval"),
+                         "logInterval must be a whole number of steps, at least 1 (leave it out for the "
+                         "automatic interval)",
+                         "logInterval");
     runTimeModifiable_ = control.getOrDefault<bool>("runTimeModifiable", true);
     control.getOrDefault<std::string>("application", "spindrift");
     control.getOrDefault<std::string>("stopAt", "endTime");
@@ -506,10 +516,17 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
 }
 
 void Simulation::write() {
-    // fixed walls once (later times refer to them), moving walls at every written time
+    // fixed walls once (later times refer to them), moving walls at every written time; a wall
+    // whose boundary model mirrors the fluid's pressure has no pressure nor density of its own
+    // (the arrays hold nothing meaningful): they are left out rather than written as 0
     std::vector<const ParticleSet*> walls;
-    for (const auto& w : scene_.walls)
+    for (auto& w : scene_.walls) {
+        if (w.pressureMirrored) {
+            w.particles.setUndefined("pressure");
+            w.particles.setUndefined("density");
+        }
         if (w.moving() || !staticWallsWritten_) walls.push_back(&w.particles);
+    }
     staticWallsWritten_ = true;
     writer_->write(scene_.time, scene_.fluid, walls, writeFields_, {{"uniform/time", timeFile()}});
     ++writes_;
@@ -522,26 +539,65 @@ void Simulation::writeInitialState() {
 }
 
 namespace {
+constexpr int stopSignals[] = {SIGINT, SIGTERM, SIGHUP};
 std::atomic<int> pendingSignal{0};
 extern "C" void onStopSignal(int signal) { pendingSignal.store(signal); }
 
-const char* signalName(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "signal"; }
+extern "C" void onStopSignalDuringSetUp(int signal) {
+    char text[128] = "spindrift: ";
+    std::size_t n = std::strlen(text);
+    for (const char* part : {log::signalName(signal), " received during set-up (before the time loop): stopped\n"})
+        for (; *part && n + 1 < sizeof text; ++part) text[n++] = *part;
+    log::writeLastWords(text, n);
+    ::signal(signal, SIG_DFL); // die of the signal: the status a shell shows is 128 + signal
+    ::raise(signal);
+}
 
-// Installs SIGINT/SIGTERM handlers for the life of a run, restoring the previous ones after.
+void installStopHandler(void (*handler)(int), int flags, struct sigaction* previous = nullptr) {
+    struct sigaction action {};
+    action.sa_handler = handler;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = flags;
+    for (std::size_t k = 0; k < std::size(stopSignals); ++k)
+        ::sigaction(stopSignals[k], &action, previous ? &previous[k] : nullptr);
+}
+
+// Installs the time loop's SIGINT/SIGTERM/SIGHUP handlers (finish the step, write it, stop) for
+// the life of a run, restoring the previous ones after.
 struct StopSignals {
-    using Handler = void (*)(int);
-    Handler previousInt, previousTerm;
+    struct sigaction previous[std::size(stopSignals)];
     StopSignals() {
         pendingSignal.store(0);
-        previousInt = std::signal(SIGINT, onStopSignal);
-        previousTerm = std::signal(SIGTERM, onStopSignal);
+        installStopHandler(onStopSignal, SA_RESTART, previous);
     }
     ~StopSignals() {
-        std::signal(SIGINT, previousInt);
-        std::signal(SIGTERM, previousTerm);
+        for (std::size_t k = 0; k < std::size(stopSignals); ++k) ::sigaction(stopSignals[k], &previous[k], nullptr);
     }
 };
+
+// The automatic logInterval: every step for a run of up to 250 steps; a longer one gets the
+// smallest of 1, 2, 5, 10, 20, 50, ... steps that keeps it to at most 250 step lines (a
+// 10,000-step run logs every 50th step: 200 lines).
+long automaticLogInterval(double estimatedSteps) {
+    constexpr double lines = 250;
+    estimatedSteps = std::min(estimatedSteps, 1e15); // also for a step size that is not finite
+    for (long decade = 1;; decade *= 10)
+        for (long mantissa : {1, 2, 5})
+            if (double(mantissa * decade) * lines >= estimatedSteps) return mantissa * decade;
+}
+
+// The wall-clock time of day, hh:mm:ss.
+std::string clockTime() {
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    localtime_r(&now, &local);
+    char text[16];
+    std::strftime(text, sizeof text, "%H:%M:%S", &local);
+    return text;
+}
 } // namespace
+
+void stopAtOnceOnSignalsDuringSetUp() { installStopHandler(onStopSignalDuringSetUp, SA_RESETHAND | SA_NODEFER); }
 
 RunSummary Simulation::run() {
     using Clock = std::chrono::steady_clock;
@@ -552,11 +608,36 @@ RunSummary Simulation::run() {
     summary.fluidParticles = s.fluid.size();
     summary.wallParticles = s.wallParticles();
 
+    const double startTime = s.time;
+    const long startStep = s.step;
+    const auto wallSeconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    const auto fractionDone = [&] { return (s.time - startTime) / (time_->endTime() - startTime); };
+    // the wall time still to go, from the simulated time still to go at the pace so far
+    const auto eta = [&] {
+        const double done = fractionDone();
+        return formatDuration(wallSeconds() * (1 - done) / std::max(done, 1e-9));
+    };
+    const auto writeAndLog = [&] {
+        write();
+        std::ostringstream o;
+        o << "Wrote time " << CaseWriter::timeName(s.time) << " (step " << s.step << ") at " << clockTime() << ", "
+          << formatDuration(wallSeconds()) << " wall";
+        if (s.time > startTime && !time_->finished(s.time)) o << ", ETA " << eta();
+        log::info(o.str());
+    };
+    // the fatal-signal message names the last completed step
+    const auto setFatalSignalContext = [&] {
+        char text[160];
+        std::snprintf(text, sizeof text, "at step %ld, time %.6g (last completed step)", s.step, s.time);
+        log::setFatalSignalContext(text);
+    };
+
     writer_->rebuildCollection();
     if (!restarted_) {
         evaluate(s.time, Scalar(time_->initialDeltaT()));
-        write();
+        writeAndLog();
     }
+    setFatalSignalContext();
     {
         double vMax0 = 0;
         for (const auto& v : s.fluid.velocity()) vMax0 = std::max(vMax0, double(v.norm()));
@@ -566,8 +647,6 @@ RunSummary Simulation::run() {
         blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
     }
 
-    const double startTime = s.time;
-    const long startStep = s.step;
     long iterations = 0, iterativeSteps = 0;
     // The states before the last two steps. A density error shows in the evaluation of the
     // step after the one that caused it, so such a blow-up rolls back two steps.
@@ -581,6 +660,11 @@ RunSummary Simulation::run() {
     int retries = 0, stepsSinceRetry = 0;
     bool keepPrevious = false; // after going back one step, 'previous' is still the step before
     double dtCap = std::numeric_limits<double>::infinity();
+    // Step lines: every logInterval-th step (automatic: from the number of steps the run is
+    // estimated to take), and always the first and the last step of the run, the steps after a
+    // retry, those whose pressure solver did not converge and the step a signal stops at.
+    double typicalDeltaT = 0; // moving average: landing on a write time shortens a step or two
+    bool logNextStep = true;
     log::info("\nStarting time loop\n");
     while (!time_->finished(s.time)) {
         if (sortEvery_ > 0 && s.step % sortEvery_ == 0) resortFluid(s);
@@ -620,6 +704,8 @@ RunSummary Simulation::run() {
                 time_->setPreviousDeltaT(dtCap);
                 log::warning(blowUp + "; going back to time " + CaseWriter::timeName(good.time) +
                              " and retrying with deltaT " + std::to_string(dtCap));
+                logNextStep = true;
+                setFatalSignalContext();
                 continue;
             }
             write(); // the last good state, to look at in ParaView
@@ -630,43 +716,55 @@ RunSummary Simulation::run() {
         lastDeltaT_ = dt;
         if (++stepsSinceRetry >= 2) retries = 0; // the retried steps are known good
         dtCap *= 1.2;                             // and Δt may grow back gradually
+        setFatalSignalContext();
 
         const DensityError err = densityError(s);
         summary.maxDensityError = std::max(summary.maxDensityError, err.max);
-        const auto& v = s.fluid.velocity();
-        const double vMax = std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); }));
-        std::ostringstream line;
-        line << "Time = " << std::setprecision(6) << s.time << "  step " << s.step << "  deltaT "
-             << std::setprecision(3) << dt << "  maxU " << vMax << "  rhoErr max " << 100 * err.max
-             << "% avg " << 100 * err.avg << "%";
+        bool converged = true;
+        SolverStats st;
         if (pressure_->isIterative()) {
-            const SolverStats st = pressure_->lastSolve();
+            st = pressure_->lastSolve();
+            converged = st.converged;
             iterations += st.iterations;
             ++iterativeSteps;
-            line << "  iterations " << st.iterations << (st.converged ? "" : " (not converged: maxIterations reached)");
             solverPerformance_->writeRow(s.time, {double(st.iterations), st.converged ? 1.0 : 0.0,
                                                   st.maxDensityError, st.avgDensityError});
         }
-        log::info(line.str());
-
         const int signal = pendingSignal.load();
+        typicalDeltaT = typicalDeltaT > 0 ? 0.9 * typicalDeltaT + 0.1 * dt : dt;
+        const double estimatedSteps =
+            double(s.step - startStep) + (time_->endTime() - s.time) / std::max(dt, typicalDeltaT);
+        const long interval = logInterval_ > 0 ? logInterval_ : automaticLogInterval(estimatedSteps);
+        if (logNextStep || s.step % interval == 0 || time_->finished(s.time) || !converged || signal != 0) {
+            logNextStep = false;
+            const auto& v = s.fluid.velocity();
+            const double vMax = std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); }));
+            std::ostringstream line;
+            line << "Time = " << std::setprecision(6) << s.time << "  step " << s.step << "  deltaT "
+                 << std::setprecision(3) << dt << "  maxU " << vMax << "  rhoErr max " << 100 * err.max
+                 << "% avg " << 100 * err.avg << "%";
+            if (pressure_->isIterative())
+                line << "  iterations " << st.iterations
+                     << (st.converged ? "" : " (not converged: maxIterations reached)");
+            log::info(line.str());
+        }
+
         const bool writeTime = time_->writeDue(s.time, s.step) || signal != 0;
-        if (writeTime) write();
+        if (writeTime) writeAndLog();
         for (auto& f : functions_) f->execute(s, writeTime);
         if (signal != 0) {
             log::clearProgress();
-            log::info(std::string("\n") + signalName(signal) + " received: wrote time " + CaseWriter::timeName(s.time) +
+            log::info(std::string("\n") + log::signalName(signal) + " received: wrote time " +
+                      CaseWriter::timeName(s.time) +
                       " and stopped. Continue with 'startFrom latestTime;' in system/controlDict.");
             summary.interrupted = true;
             break;
         }
         rereadControlDictIfChanged();
         if (log::stdoutIsTerminal()) {
-            const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-            const double done = (s.time - startTime) / (time_->endTime() - startTime);
             std::ostringstream p;
-            p << "[" << std::fixed << std::setprecision(1) << 100 * done << "%] t = " << std::setprecision(4)
-              << s.time << " / " << time_->endTime() << "  ETA " << formatDuration(elapsed * (1 - done) / std::max(done, 1e-9));
+            p << "[" << std::fixed << std::setprecision(1) << 100 * fractionDone() << "%] t = " << std::setprecision(4)
+              << s.time << " / " << time_->endTime() << "  step " << s.step << "  ETA " << eta();
             log::progress(p.str());
         }
     }
@@ -675,7 +773,7 @@ RunSummary Simulation::run() {
     summary.steps = s.step - startStep;
     summary.endTime = s.time;
     summary.writes = writes_;
-    summary.wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+    summary.wallSeconds = wallSeconds();
     summary.averageIterations = iterativeSteps ? double(iterations) / iterativeSteps : 0.0;
     return summary;
 }

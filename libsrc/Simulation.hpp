@@ -15,7 +15,7 @@ namespace spindrift {
 
 struct RunSummary {
     long steps = 0;                 // steps taken in this run (not counting those before a restart)
-    bool interrupted = false;       // stopped by SIGINT/SIGTERM (state written)
+    bool interrupted = false;       // stopped by SIGINT/SIGTERM/SIGHUP (state written)
     double endTime = 0;
     double wallSeconds = 0;
     std::size_t fluidParticles = 0, wallParticles = 0;
@@ -28,6 +28,12 @@ struct RunSummary {
 // lattice has exactly the rest density: m = ρ0 / Σ_lattice W (instead of ρ0 Δx^d, which is off
 // by the kernel's lattice-sum error, ~1 % for the Wendland C2 at h = 2.6Δx in 2D).
 Scalar latticeParticleMass(const KernelTable& kernel, const PhysicalParameters& physics);
+
+// SIGINT, SIGTERM and SIGHUP before the time loop (set-up, -dryRun): a message naming the
+// signal, and the process ends as killed by it (exit status 128 + signal); there is no state
+// worth writing yet. Simulation::run() takes them over for the time loop (finish the step,
+// write it, stop) and gives them back after.
+void stopAtOnceOnSignalsDuringSetUp();
 
 class Simulation {
 public:
@@ -86,6 +92,7 @@ private:
     std::unique_ptr<ShiftingModel> shifting_;
     std::vector<std::string> writeFields_;
     int sortEvery_ = 10;
+    int logInterval_ = 0; // controlDict logInterval: a step line every N steps (0: automatic)
     bool reduceDeltaTOnBlowUp_ = false;
     int blowUpRetries_ = 5;
     double blowUpDensityError_ = 0.2;

@@ -27,13 +27,15 @@ expect() { # expected words, command line words...
     got=$(completions "$@")
     [ "$got" = "$want" ] || fail "'$*<TAB>' gave '$got', not '$want'"
 }
-helpOptions=$("$solver" -help | sed -n 's/^ *--\([A-Za-z][A-Za-z0-9]*\).*/-\1/p' | sort | tr '\n' ' ')
+helpOptions=$("$solver" -help | sed -n 's/^  -\([A-Za-z][A-Za-z0-9]*\).*/-\1/p' | sort | tr '\n' ' ')
+[ "$(wc -w <<< "$helpOptions")" -ge 6 ] || fail "fewer than 6 options in spindrift -help: $helpOptions"
 [ -n "$helpOptions" ] || fail "no options in spindrift -help"
 expect "$helpOptions" "$solver" ""
 expect "-case " "$solver" "-ca"
 expect "-dryRun " "$solver" -case "$work/caseA" "-d"
 expect "$work/caseA $work/caseB " "$solver" -case "$work/case"
 expect "boundary force functionObject integrator kernel pressure viscosity " "$solver" -listModels ""
+expect "boundary force functionObject integrator kernel pressure viscosity " "$work/noSolver" -listModels ""
 expect "pressure " "$solver" -listModels "pr"
 expect "$(seq 1 "$(nproc)" | sort | tr '\n' ' ')" "$solver" -threads ""
 # the solver cannot be run: the fixed list, whose every option the solver has

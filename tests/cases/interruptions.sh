@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# Interruptions lose nothing: SIGINT/SIGTERM write the current time and exit 0; a changed
-# controlDict is re-read during the run; SIGKILL in the middle of a write leaves only complete
-# time directories (and a .pvd listing only those), and the run continues from the latest.
-#   interruptions.sh <spindrift> <tutorials dir>
+# Interruptions lose nothing: SIGINT/SIGTERM/SIGHUP write the current time and exit 0; during
+# set-up they stop at once with a message naming the signal (status 128 + signal); a fatal
+# signal (a plugin that dereferences null) leaves its last words, naming the last completed
+# step, in the log and on stderr and the status of the signal (139); a changed controlDict is
+# re-read during the run; SIGKILL in the middle of a write leaves only complete time directories
+# (and a .pvd listing only those), and the run continues from the latest.
+#   interruptions.sh <spindrift> <tutorials dir> <libspindriftTestFaultyForce.so>
 set -euo pipefail
 . "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
-solver=$1 tutorials=$2
+solver=$1 tutorials=$2 faultyForce=$3
 work=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -29,7 +32,7 @@ checkComplete() {
     done
 }
 
-for sig in INT TERM; do
+for sig in INT TERM HUP; do
     newCase sig$sig 10
     "$solver" -case "$work/sig$sig" > "$work/sig$sig/log" 2>&1 &
     pid=$!
@@ -42,6 +45,52 @@ for sig in INT TERM; do
     checkComplete "$work/sig$sig"
     echo "ok SIG$sig: stopped with time $last written"
 done
+
+# a case with the test force that fails on purpose (tests/plugins/FaultyForce.cpp)
+faultyCase() { # faultyCase <name> <entries of the force>
+    newCase "$1" 10
+    sed -i -E "s|^libs .*|libs (\"$faultyForce\");|" "$work/$1/system/controlDict"
+    echo "forces { fault { type faulty; $2 } }" >> "$work/$1/system/sphSchemes"
+}
+waitForLine() { # waitForLine <text> <file> <pid>
+    for _ in $(seq 1 600); do grep -q "$1" "$2" && return 0; kill -0 "$3" 2>/dev/null || return 1; sleep 0.1; done; return 1
+}
+
+# a signal during set-up: a message naming it, the process ends as killed by it, nothing written
+for sig in INT TERM HUP; do
+    faultyCase setUp$sig "setUpSeconds 60;"
+    "$solver" -case "$work/setUp$sig" > "$work/setUp$sig/log" 2>&1 &
+    pid=$!
+    waitForLine "faulty: sleeping in set-up" "$work/setUp$sig/log" $pid || fail "SIG$sig: set-up not reached"
+    kill -$sig $pid
+    status=0
+    wait $pid || status=$?
+    [ $status -eq $((128 + $(kill -l $sig))) ] || fail "SIG$sig during set-up: exit status $status"
+    grep -qx "spindrift: SIG$sig received during set-up (before the time loop): stopped" "$work/setUp$sig/log" \
+        || fail "SIG$sig during set-up: no message: $(tail -n 3 "$work/setUp$sig/log")"
+    if ls "$work/setUp$sig" | grep -q '^[0-9]'; then fail "SIG$sig during set-up: a time was written"; fi
+    echo "ok SIG$sig during set-up: exit status $status, '$(tail -n 1 "$work/setUp$sig/log")'"
+done
+
+# a fatal signal: the last words name the last completed step, in the log (flushed up to them)
+# and on stderr, and the exit status stays that of the signal
+faultyCase segfault "segfaultAfterStep 5;"
+echo "logInterval 1;" >> "$work/segfault/system/controlDict"
+status=0
+(ulimit -c 0; exec "$solver" -case "$work/segfault" > "$work/segfault/log" 2> "$work/segfault/err") || status=$?
+[ $status -eq 139 ] || fail "segfault: exit status $status, not 139 (SIGSEGV)"
+last=$(tail -n 1 "$work/segfault/log")
+[[ "$last" =~ ^spindrift:\ fatal\ signal\ SIGSEGV\ at\ step\ 5,\ time\ ([0-9.e-]+)\ \(last\ completed\ step\)$ ]] \
+    || fail "segfault: the log's last line is '$last'"
+grep -q "^Time = ${BASH_REMATCH[1]}  step 5 " "$work/segfault/log" || fail "segfault: the time named is not step 5's"
+[ "$(grep -c '^Time = ' "$work/segfault/log")" -eq 5 ] || fail "segfault: the log lacks step lines written before"
+[ "$(cat "$work/segfault/err")" = "$last" ] || fail "segfault: stderr is '$(cat "$work/segfault/err")'"
+# a log taking stdout and stderr gets the message once
+status=0
+(ulimit -c 0; exec "$solver" -case "$work/segfault" > "$work/segfault/log2" 2>&1) || status=$?
+[ $status -eq 139 ] || fail "segfault (2>&1): exit status $status"
+[ "$(grep -c "fatal signal" "$work/segfault/log2")" -eq 1 ] || fail "segfault (2>&1): not one message"
+echo "ok fatal signal: exit status 139, '$last'"
 
 # runTimeModifiable: shorten endTime while running
 newCase modify 10

@@ -4,7 +4,7 @@ add_test(NAME Reliability.BadInputsThroughTheSolver
           ${PROJECT_SOURCE_DIR}/tutorials ${PROJECT_SOURCE_DIR}/tests/data/badInputs.table)
 add_test(NAME Reliability.SignalsKillAndRuntimeModification
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/interruptions.sh $<TARGET_FILE:spindriftSolver>
-          ${PROJECT_SOURCE_DIR}/tutorials)
+          ${PROJECT_SOURCE_DIR}/tutorials $<TARGET_FILE:spindriftTestFaultyForce>)
 set_tests_properties(Reliability.BadInputsThroughTheSolver Reliability.SignalsKillAndRuntimeModification
   PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR}:${CMAKE_BINARY_DIR}/lib/testPlugins;OMP_NUM_THREADS=1"
   TIMEOUT 300)

@@ -1,12 +1,60 @@
 #!/usr/bin/env bash
-# The solver's command line: -help, -listModels [kind], -dryRun, bad arguments.
+# The solver's command line: -help, -version, -listModels [kind], -dryRun, OpenFOAM spellings
+# (-case) with the GNU ones (--case, --case=DIR) as aliases, bad arguments (exit status 1, the
+# message on stderr, "did you mean" for a misspelt option).
 #   solverCommandLine.sh <spindrift> <tutorials dir>
 set -euo pipefail
 . "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
 solver=$1 tutorials=$2
 fail() { echo "FAIL: $*"; exit 1; }
 
-"$solver" -help | grep -q -- "-case" || fail "-help does not describe -case"
+help=$("$solver" -help)
+echo "$help"
+grep -q -- "^  -case <dir> " <<< "$help" || fail "-help does not describe -case <dir>"
+if grep -q -- "^  --" <<< "$help"; then fail "-help describes GNU-style --options"; fi
+for o in dryRun threads listModels version help; do
+    grep -q -- "^  -$o\b" <<< "$help" || fail "-help does not describe -$o"
+done
+[ "$("$solver" --help)" = "$help" ] || fail "--help differs from -help"
+# every model kind -listModels knows is named in -help
+kinds=$("$solver" -listModels | grep -B1 '^($' | grep -v '^(' | grep -v '^--')
+[ "$(wc -w <<< "$kinds")" -ge 7 ] || fail "-listModels lists fewer than 7 kinds: $kinds"
+for k in $kinds; do grep -qw "$k" <<< "$help" || fail "-help does not name the model kind $k"; done
+
+version=$("$solver" -version)
+echo "$version"
+projectVersion=$(sed -n 's/^project(Spindrift VERSION \([0-9.]*\).*/\1/p' "$tutorials/../CMakeLists.txt")
+grep -q "^spindrift $projectVersion\b" <<< "$version" || fail "-version does not start with 'spindrift $projectVersion'"
+if git -C "$tutorials/.." rev-parse --show-toplevel > /dev/null 2>&1; then
+    grep -q "^spindrift $projectVersion (git [0-9a-zA-Z.-]*)$" <<< "$version" || fail "-version lacks the git describe"
+fi
+grep -Eq "^Precision *: (double|float)$" <<< "$version" || fail "-version lacks the precision"
+grep -Eq "^Build type *: [A-Za-z]+" <<< "$version" || fail "-version lacks the build type"
+grep -Eq "^Flags *: .*-O" <<< "$version" || fail "-version lacks the compiler flags"
+grep -Eq "^OpenMP *: (on|off)" <<< "$version" || fail "-version lacks OpenMP on/off"
+grep -Eq "^Sanitizers *: " <<< "$version" || fail "-version lacks the sanitizers"
+
+# bad command lines: status 1, nothing on stdout, the message on stderr
+expectError() { # expectError <stderr pattern> <arguments...>
+    local pattern=$1 status=0; shift
+    "$solver" "$@" > "$work/out" 2> "$work/err" || status=$?
+    [ $status -eq 1 ] || fail "'spindrift $*': exit status $status, not 1"
+    [ ! -s "$work/out" ] || fail "'spindrift $*' wrote to stdout: $(cat "$work/out")"
+    grep -q -- "$pattern" "$work/err" || fail "'spindrift $*': stderr '$(cat "$work/err")' lacks '$pattern'"
+    echo "ok 'spindrift $*': $(head -n 1 "$work/err")"
+}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+expectError "unknown option '-dryrun'; did you mean '-dryRun'?" -dryrun
+expectError "unknown option '--dryRn'; did you mean '-dryRun'?" --dryRn
+expectError "did you mean '-listModels'?" -listModles kernel
+expectError "did you mean '-case'?" -csae .
+expectError "did you mean '-version'?" -verison
+expectError "unknown option '-frobnicate'" -frobnicate
+if grep -q "did you mean" "$work/err"; then fail "a suggestion for an option nothing is close to"; fi
+expectError "-case" -case
+expectError "-threads" -threads many
+expectError "unexpected argument" some/case
 
 models=$("$solver" -listModels)
 for m in cubicSpline wendlandC2 wcsph artificial laminar symplecticEuler leapfrog akinci; do
@@ -16,8 +64,6 @@ done
 if "$solver" -listModels kernel | grep -qw wcsph; then fail "-listModels kernel lists a pressure model"; fi
 if "$solver" -listModels nonsense 2>/dev/null; then fail "-listModels with an unknown kind must fail"; fi
 
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 cloneCase "$tutorials/damBreak2D" "$work/case"
 out=$("$solver" -case "$work/case" -dryRun -threads 1)
 echo "$out"
@@ -27,6 +73,13 @@ grep -q "libspindrift_kernel_cubicSpline.so" <<< "$out" || fail "-dryRun does no
 if grep -q "wendlandC2" <<< "$out"; then fail "-dryRun opened a plugin the case does not name"; fi
 [ -f "$work/case/0/fluid.vtp" ] || fail "-dryRun did not write 0/"
 [ ! -d "$work/case/0.01" ] || fail "-dryRun ran time steps"
+# the GNU spellings still work
+rm -rf "$work/case/0"
+"$solver" --case "$work/case" --dryRun --threads 1 > /dev/null || fail "--case DIR --dryRun"
+[ -f "$work/case/0/fluid.vtp" ] || fail "--case DIR --dryRun did not write 0/"
+rm -rf "$work/case/0"
+"$solver" --case="$work/case" --dryRun > /dev/null || fail "--case=DIR --dryRun"
+[ -f "$work/case/0/fluid.vtp" ] || fail "--case=DIR --dryRun did not write 0/"
 
 if "$solver" -case "$work/doesNotExist" 2> "$work/err"; then fail "a missing case must fail"; fi
 grep -q "does not exist" "$work/err" || fail "missing case message: $(cat "$work/err")"

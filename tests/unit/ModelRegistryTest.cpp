@@ -192,5 +192,5 @@ TEST(ModelRegistry, KindListsAgreeEverywhere) {
     const std::string cmake = test::readFile(std::filesystem::path(SPINDRIFT_SOURCE_DIR) / "cmake/SpindriftPlugin.cmake");
     EXPECT_NE(cmake.find("set(kinds " + kinds + ")"), std::string::npos) << "cmake/SpindriftPlugin.cmake: " << kinds;
     const std::string completion = test::readFile(std::filesystem::path(SPINDRIFT_SOURCE_DIR) / "etc/bash-completion/spindrift");
-    EXPECT_NE(completion.find("\"" + kinds + "\""), std::string::npos) << "etc/bash-completion/spindrift: " << kinds;
+    EXPECT_NE(completion.find("kinds=\"" + kinds + "\""), std::string::npos) << "etc/bash-completion/spindrift: " << kinds;
 }

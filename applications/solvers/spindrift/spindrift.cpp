@@ -1,12 +1,20 @@
 // spindrift — the SPH solver application.
 //
-//   spindrift [-case DIR] [-dryRun] [-threads N] [-listModels [kind]] [-help]
+//   spindrift [-case DIR] [-dryRun] [-threads N] [-listModels [kind]] [-version] [-help]
+//
+// Options are spelt as OpenFOAM's (-case DIR); the GNU spellings (--case DIR, --case=DIR) are
+// aliases. A misspelt option is refused with the closest one ("did you mean '-dryRun'?"),
+// exit status 1.
+#include "BuildInfo.hpp"
+#include "Error.hpp"
 #include "Log.hpp"
 #include "ModelRegistry.hpp"
 #include "Simulation.hpp"
 
 #include <boost/program_options.hpp>
 #include <sys/resource.h>
+#include <unistd.h>
+#include <ctime>
 #include <iostream>
 #ifdef _OPENMP
 #include <omp.h>
@@ -16,6 +24,96 @@ namespace po = boost::program_options;
 using namespace spindrift;
 
 namespace {
+
+// The options, each once: what the parser accepts and what -help prints are made from this.
+struct CommandLineOption {
+    std::string name;             // without the dash
+    std::string argument;         // as -help shows it: "<dir>" (required), "[kind]" (optional), "" (none)
+    std::string description;
+    const po::value_semantic* value; // owned by the options_description once added
+};
+
+std::vector<CommandLineOption> commandLineOptions() {
+    std::string kinds;
+    for (const auto& kind : ModelRegistry::kinds()) kinds += (kinds.empty() ? "" : " ") + kind;
+    return {
+        {"case", "<dir>", "case directory (default: the current directory)",
+         po::value<std::string>()->default_value(".")},
+        {"dryRun", "",
+         "read the case, build the particles, report counts, schemes and loaded plugins, write the start "
+         "time, stop",
+         new po::untyped_value(true)},
+        {"threads", "<N>", "number of OpenMP threads (default: OMP_NUM_THREADS, else every core)",
+         po::value<int>()},
+        {"listModels", "[kind]", "list the available models, or those of one kind: " + kinds,
+         po::value<std::string>()->implicit_value("")},
+        {"version", "", "print the version and the build (precision, type, flags) and exit",
+         new po::untyped_value(true)},
+        {"help", "", "print this help and exit", new po::untyped_value(true)},
+    };
+}
+
+// Words of 'text' on lines of at most 'width' characters, the lines after the first indented.
+std::string wrap(const std::string& text, std::size_t indent, std::size_t width) {
+    std::istringstream words(text);
+    std::string out, word;
+    std::size_t column = indent;
+    while (words >> word) {
+        if (column > indent && column + 1 + word.size() > width) {
+            out += '\n' + std::string(indent, ' ');
+            column = indent;
+        } else if (column > indent) {
+            out += ' ';
+            ++column;
+        }
+        out += word;
+        column += word.size();
+    }
+    return out;
+}
+
+void printHelp(const std::vector<CommandLineOption>& options) {
+    std::size_t column = 0;
+    for (const auto& o : options) column = std::max(column, o.name.size() + 1 + (o.argument.empty() ? 0 : o.argument.size() + 1));
+    column += 4; // two spaces before, two after
+    std::cout << "Usage: spindrift [OPTIONS]\n"
+              << "Runs the case in the current directory (or the one -case names) from its start time to its\n"
+              << "endTime; output in time directories and <case>.pvd, the log on stdout.\n\nOptions:\n";
+    for (const auto& o : options) {
+        std::string left = "  -" + o.name + (o.argument.empty() ? "" : " " + o.argument);
+        left.resize(column, ' ');
+        std::cout << left << wrap(o.description, column, 95) << '\n';
+    }
+    std::cout << "\nThe GNU spellings are aliases: --case DIR, --case=DIR, --dryRun, ...\n";
+}
+
+void printVersion() {
+    std::cout << "spindrift " << build::version;
+    if (*build::gitDescribe) std::cout << " (git " << build::gitDescribe << ")";
+    std::cout << "\nPrecision  : " << build::precision << "\nBuild type : " << build::type
+              << "\nCompiler   : " << build::compiler << "\nFlags      : " << build::flags << "\nOpenMP     : ";
+#ifdef _OPENMP
+    const int threads = omp_get_max_threads();
+    std::cout << "on (" << threads << (threads == 1 ? " thread" : " threads") << " here by default)";
+#else
+    std::cout << "off";
+#endif
+    std::cout << "\nSanitizers : " << build::sanitizers << '\n';
+}
+
+// An option the parser does not know: "spindrift: unknown option '-dryrun'; did you mean
+// '-dryRun'?" on stderr.
+std::string unknownOptionMessage(const std::string& given, const std::vector<CommandLineOption>& options) {
+    std::string word = given.substr(given.find_first_not_of('-') == std::string::npos ? given.size()
+                                                                                     : given.find_first_not_of('-'));
+    word = word.substr(0, word.find('='));
+    std::vector<std::string> names;
+    for (const auto& o : options) names.push_back(o.name);
+    const std::string closest = closestMatch(word, names);
+    std::string message = "spindrift: unknown option '" + given + "'";
+    if (!closest.empty()) message += "; did you mean '-" + closest + "'?";
+    return message;
+}
 
 // Peak resident memory of the process (Linux: ru_maxrss in KiB).
 long peakMemoryMiB() {
@@ -41,8 +139,22 @@ void listModels(const std::string& only) {
     }
 }
 
+std::string startedLine() {
+    const std::time_t now = std::time(nullptr);
+    std::tm local{};
+    localtime_r(&now, &local);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", &local);
+    char host[256] = "?";
+    gethostname(host, sizeof host - 1);
+    return std::string(date) + " on " + host + ", pid " + std::to_string(getpid());
+}
+
 void banner(const Simulation& sim, int threads) {
     const auto& s = const_cast<Simulation&>(sim).scene();
+    log::Line() << "Spindrift : " << build::version << (*build::gitDescribe ? std::string(" (git ") + build::gitDescribe + ")" : "")
+                << ", " << build::precision << ", " << build::type;
+    log::Line() << "Started   : " << startedLine();
     log::Line() << "Case      : " << sim.caseFiles().dir.string();
     log::Line() << "Threads   : " << threads;
     std::ostringstream walls;
@@ -60,25 +172,41 @@ void banner(const Simulation& sim, int threads) {
 } // namespace
 
 int main(int argc, char** argv) {
-    po::options_description options("Usage: spindrift [options]\nOptions");
-    options.add_options()
-        ("help", "print this help and exit")
-        ("case", po::value<std::string>()->default_value("."), "case directory")
-        ("dryRun", "read the case, build the particles, report counts and schemes, write the start time, stop")
-        ("threads", po::value<int>(), "number of OpenMP threads")
-        ("listModels", po::value<std::string>()->implicit_value(""),
-         "list the available models (of one kind: kernel pressure viscosity integrator boundary)");
+    log::installFatalSignalHandlers();
+    const std::vector<CommandLineOption> optionTable = commandLineOptions();
+    po::options_description options;
+    for (const auto& o : optionTable) options.add_options()(o.name.c_str(), o.value, o.description.c_str());
     po::variables_map vm;
     try {
+        // -case (OpenFOAM's spelling, "long disguise") and --case both name the long option
         const auto style = po::command_line_style::unix_style | po::command_line_style::allow_long_disguise;
-        po::store(po::command_line_parser(argc, argv).options(options).style(style).run(), vm);
+        const po::parsed_options parsed = po::command_line_parser(argc, argv).options(options).style(style).run();
+        for (const auto& o : parsed.options) // a word that is no option's value (the parser keeps it aside)
+            if (o.string_key.empty()) {
+                const std::string word = o.original_tokens.empty() ? std::string() : o.original_tokens.front();
+                std::cerr << "spindrift: unexpected argument '" << word << "' (a case directory is given with "
+                          << "-case " << word << ")\nRun 'spindrift -help' for the options." << std::endl;
+                return 1;
+            }
+        po::store(parsed, vm);
         po::notify(vm);
+    } catch (const po::unknown_option& e) {
+        std::cerr << unknownOptionMessage(e.get_option_name(), optionTable)
+                  << "\nRun 'spindrift -help' for the options." << std::endl;
+        return 1;
     } catch (const std::exception& e) {
-        std::cerr << "spindrift: " << e.what() << "\n" << options << std::endl;
-        return 2;
+        // Boost names an option '--case' whatever the spelling: name it as -help does
+        std::string message = e.what();
+        for (std::size_t at; (at = message.find("'--")) != std::string::npos;) message.erase(at + 1, 1);
+        std::cerr << "spindrift: " << message << "\nRun 'spindrift -help' for the options." << std::endl;
+        return 1;
     }
     if (vm.count("help")) {
-        std::cout << options << std::endl;
+        printHelp(optionTable);
+        return 0;
+    }
+    if (vm.count("version")) {
+        printVersion();
         return 0;
     }
     try {
@@ -86,6 +214,7 @@ int main(int argc, char** argv) {
             listModels(vm["listModels"].as<std::string>());
             return 0;
         }
+        stopAtOnceOnSignalsDuringSetUp();
         int threads = 1;
 #ifdef _OPENMP
         if (vm.count("threads")) {
