@@ -26,6 +26,8 @@ TEST(PluginTemplates, EveryKindHasATemplateThatLoadsAndMakesItsModel) {
     EXPECT_NE(test::createModel<BoundaryModel>("type " + load("boundary") + ";", physics), nullptr);
     EXPECT_NE(test::createModel<ExtraForce>("type " + load("force") + "; acceleration (1 0 0);", physics), nullptr);
     EXPECT_NE(test::createModel<FunctionObject>("type " + load("functionObject") + ";", physics), nullptr);
+    EXPECT_NE(test::createModel<DensityDiffusion>("type " + load("densityDiffusion") + ";", physics), nullptr);
+    EXPECT_NE(test::createModel<ShiftingModel>("type " + load("shifting") + ";", physics), nullptr);
     EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), ModelRegistry::kinds().size());
 }
 

@@ -3,9 +3,10 @@
 // Fourtakas"); docs/MODELS.md §fourtakas. Molteni & Colagrossi's term on the dynamic part of the
 // density difference only:
 //   dρ_i/dt += δ h c0 Σ_j V_j [(ρ_i − ρ_j) + ρ^H_ji] (r_ij·∇_i W_ij) / (r² + 0.01 h²),
-//   ρ^H_ji = ρ0 [(1 − ρ0 g·r_ij / B)^(1/γ) − 1],   B = c0² ρ0/γ,
-// the hydrostatic density of j relative to i (j a height g·r_ij/|g| below: denser). A column at
-// rest, whose density is hydrostatic, has nothing to diffuse. Fluid pairs only (as DualSPHysics'
+//   ρ^H_ji = ρ0 [(1 − ρ0 g·r_ij / B)^(1/γ) − 1] ≈ −ρ0 g·r_ij / c0²,   B = c0² ρ0/γ,
+// the hydrostatic density of j relative to i (j a height −g·r_ij/|g| below: denser), to first
+// order in ρ0 |g| r / B (below 1e-3 within a support; DualSPHysics takes the power, a call per
+// pair). A column at rest, whose density is hydrostatic, has nothing to diffuse. Fluid pairs only (as DualSPHysics'
 // full variant, and TrixiParticles). h the support radius (= 2 h_s).
 //
 //   densityDiffusion { type fourtakas; delta 0.1; }
@@ -21,12 +22,11 @@ struct FourtakasTerm {
     static constexpr bool usesGradient = true;
     using Particle = Scalar; // ρ_i
     const Scalar* rho;
-    Scalar eps, rho0, invGamma;
-    Vec3 gOverB; // ρ0 g / B
+    Scalar eps;
+    Vec3 hydrostatic; // −ρ0 g / c0²: ρ^H_ji = hydrostatic · r_ij
     Particle particle(std::size_t i) const { return rho[i]; }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const {
-        const Scalar hydrostatic = rho0 * (std::pow(std::max(1 - gOverB.dot(q.r), Scalar(1e-3)), invGamma) - 1);
-        sum += (rhoi - rho[q.j] + hydrostatic) / rho[q.j] * q.r.dot(q.gradW) / (q.r2 + eps);
+        sum += (rhoi - rho[q.j] + hydrostatic.dot(q.r)) / rho[q.j] * q.r.dot(q.gradW) / (q.r2 + eps);
     }
 };
 
@@ -37,17 +37,17 @@ public:
     }
 
     void initialise(Scene& s) override {
-        if (!(s.constants.eosExponent > 0))
-            throw std::runtime_error("densityDiffusion fourtakas needs the Tait equation of state of a weakly "
-                                     "compressible pressure model (wcsph, isobaric)");
+        if (!(s.constants.soundSpeed > 0))
+            throw std::runtime_error("densityDiffusion fourtakas needs the sound speed of a weakly compressible "
+                                     "pressure model (wcsph, isobaric)");
     }
 
     void addRate(const Scene& s, std::vector<Scalar>& rate) const override {
         const SceneConstants& c = s.constants;
-        const Scalar h = c.supportRadius, B = c.soundSpeed * c.soundSpeed * c.rho0 / c.eosExponent;
+        const Scalar h = c.supportRadius;
         const Scalar scale = delta_ * h * c.soundSpeed * s.fluid.particleMass();
-        const FourtakasTerm term{s.fluid.density().data(), Scalar(0.01) * h * h, c.rho0, 1 / c.eosExponent,
-                                 Vec3(c.rho0 * s.physics.gravity / B)};
+        const FourtakasTerm term{s.fluid.density().data(), Scalar(0.01) * h * h,
+                                 Vec3(-c.rho0 * s.physics.gravity / (c.soundSpeed * c.soundSpeed))};
         forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, Scalar, Scalar sum) { rate[i] += scale * sum; });
     }
 

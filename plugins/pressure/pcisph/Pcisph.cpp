@@ -33,11 +33,13 @@
 // same for a constant Δt), up to neighbours that enter the support during the step (the
 // paper's §2.4.1 approximation). Negative pressures are clamped to zero (free surfaces) unless
 // clampNegativePressure no. Wall particles b take part with the masses M_b and the pressure
-// (mirrored or their own) the boundary model gives them, at their positions of the step.
+// (mirrored or their own) the boundary model gives them, at their positions of the step; walls
+// of their own pressure (adami) have it extrapolated again from the fluid's at every correction.
 //
 //   pressure { type pcisph; clampNegativePressure yes; }
 //   sphSolution: pressure { maxDensityError 0.01; densityErrorNorm maximum;
 //                           minIterations 3; maxIterations 100; }
+#include "BoundaryModel.hpp"
 #include "IterativeSolverControls.hpp"
 #include "LatticePrototype.hpp"
 #include "Log.hpp"
@@ -45,6 +47,7 @@
 #include "PairLoop.hpp"
 #include "PressureModel.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace {
@@ -100,6 +103,9 @@ public:
 
         const Scalar rho0 = rho0_, delta = delta_;
         const bool clamp = clampNegative_;
+        // walls with a pressure of their own (adami) follow the fluid's at every correction
+        const bool wallsOfTheirOwnPressure =
+            s.boundaryModel && std::any_of(s.walls.begin(), s.walls.end(), [](const WallSystem& w) { return !w.pressureMirrored; });
         Scalar* q = pOverRho2_.data();
         int iterations = 0;
         CompressionError err;
@@ -114,6 +120,7 @@ public:
                 const Scalar r = std::max(rho[i], rho0);
                 q[i] = p[i] / (r * r);
             }
+            if (wallsOfTheirOwnPressure) s.boundaryModel->updatePressure(s, p);
             symmetricPressureAcceleration(s, x, q, [&](std::size_t i, const Vec3& ap) {
                 pressureAcc_[i] = ap;
                 predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + ap));
