@@ -340,13 +340,16 @@ struct HydrostaticBounds {
     double penetration = 0.1; // the deepest particle beyond the walls' surface, in Δx
 };
 const HydrostaticBounds fallback;
+// (test::tol(double build, float build): the float build's runs differ from the double's, the
+// column's residual motion being chaotic; measured there: isobaric 20 %, pbf 276 %, 1.6 %,
+// 0.14 m/s, the others within the double build's bounds.)
 const std::map<std::string, HydrostaticBounds> knownBounds = {
     {"pcisph", {0.08, 0.01, 0.05, 2, 0.1}},   // measured 2.0–4.6 %, 0.17 %, 0.020 m/s, none in a wall
     {"iisph", {0.12, 0.01, 0.05, 2, 0.1}},    // 7.0–8.2 %, 0.12 %, 0.021 m/s, none
     {"wcsph", {0.14, 0.01, 0.05, 2, 0.1}},    // 9.3–11.1 %, 0.55 %, 0.019 m/s, none
-    {"isobaric", {0.15, 0.01, 0.05, 2, 0.1}}, // 10.1–11.1 %, 0.64 %, 0.023 m/s, none
+    {"isobaric", {test::tol(0.15, 0.26), 0.01, 0.05, 2, 0.1}}, // 10.1–11.1 %, 0.64 %, 0.023 m/s, none
     {"dfsph", {1.3, 0.01, 0.05, 2, 0.1}},     // 86–101 %, 0.11 %, 0.022 m/s, none
-    {"pbf", {3.0, 0.02, 0.15, 2, 0.3}},       // 160–235 %, 1.0 %, 0.068 m/s, 0.20 dx into a wall
+    {"pbf", {test::tol(3.0, 3.5), test::tol(0.02, 0.025), test::tol(0.15, 0.2), 2, 0.3}}, // 160–235 %, 1.0 %, 0.068 m/s, 0.20 dx into a wall
     {"relaxedPbf", {1.5, 0.02, 0.2, 2, 0.1}}, // 113–114 %, 0.6–1.3 %, 0.10–0.12 m/s, 0.03 dx
 };
 
@@ -417,7 +420,7 @@ ColumnResult hydrostaticColumn(const std::string& pressure) {
     double v2 = 0, top = 0;
     for (std::size_t i = 0; i < s.fluid.size(); ++i) {
         const Vec3 x = s.fluid.position()[i];
-        out.penetration = std::max<double>(out.penetration, std::max({-x.x(), x.x() - width, -x.y()}) / dx);
+        out.penetration = std::max<double>(out.penetration, std::max<double>({-x.x(), x.x() - width, -x.y()}) / dx);
         top = std::max<double>(top, x.y());
         out.maxDensityError = std::max(out.maxDensityError, double(s.fluid.density()[i] - rho0) / rho0);
         v2 += s.fluid.velocity()[i].squaredNorm();

@@ -126,13 +126,14 @@ struct PressureTerm {
     void cached(Scalar qi, Index j, const Vec3& gradW, Sum& sum) const { sum += (qi + q[j]) * gradW; }
 };
 
-// Σ_j (Δx_i − Δx_j)·∇W_ij: the density change the displacements make.
+// Σ_j (a_i − a_j)·∇W_ij of the pressure accelerations: Δt² times it is the density change of
+// the displacements Δx = Δt² a_p.
 struct DisplacementDivergenceTerm {
     using Sum = Scalar;
     using Particle = Vec3;
-    const Vec3* dx;
-    Particle particle(std::size_t i) const { return dx[i]; }
-    void cached(const Vec3& dxi, Index j, const Vec3& gradW, Sum& sum) const { sum += (dxi - dx[j]).dot(gradW); }
+    const Vec3* a;
+    Particle particle(std::size_t i) const { return a[i]; }
+    void cached(const Vec3& ai, Index j, const Vec3& gradW, Sum& sum) const { sum += (ai - a[j]).dot(gradW); }
 };
 
 class Iisph final : public PressureModel {
@@ -191,7 +192,7 @@ public:
         q_.resize(n);
         qNext_.resize(n);
         pNext_.resize(n);
-        displacement_.resize(n);
+        pressureAcceleration_.resize(n);
         rhoAdvected_.resize(n);
         rhoPredicted_.resize(n);
         const Scalar m = s.fluid.particleMass(), dt2 = dt * dt, invDt2 = 1 / dt2, w = warmStart_;
@@ -209,16 +210,16 @@ public:
             forEachPairSum(s, s.fluid.position(), OwnWallPressureTerm{},
                            [&](std::size_t i, const auto&, const Vec3& sum) { ownWallPush_[i] = sum; });
         }
-        // Δx_i = Δt² a_p,i of the pressure q = p/ρ², given Σ_j (q_i + q_j) ∇W_ij
-        const auto setDisplacement = [&](std::size_t i, Scalar qi, const Vec3& push) {
+        // a_p,i (= Δx_i/Δt²) of the pressure q = p/ρ², given Σ_j (q_i + q_j) ∇W_ij
+        const auto setPressureAcceleration = [&](std::size_t i, Scalar qi, const Vec3& push) {
             Vec3 f = m * push + qi * pressureWallGrad_[i];
             if (ownPressureWalls) f += ownWallPush_[i];
-            displacement_[i] = -dt2 * f;
+            pressureAcceleration_[i] = -f;
         };
         forEachCachedPairSum(s, AdvectionAndPressureTerm{advected_.data(), q_.data()},
                              [&](std::size_t i, const auto& pi, const AdvectionAndPressureTerm::Sum& sum) {
                                  rhoAdvected_[i] = rho[i] + dt * (m * sum.rate + pi.v.dot(wallGrad_[i]) - wallRate_[i]);
-                                 setDisplacement(i, pi.q, sum.push);
+                                 setPressureAcceleration(i, pi.q, sum.push);
                              });
 
         const Scalar relax = omega_ * invDt2, rho0 = rho0_;
@@ -226,9 +227,9 @@ public:
         CompressionError err;
         for (;;) {
             // ρ* of the current pressure, and the next pressure (taken if ρ* misses η)
-            forEachCachedPairSum(s, DisplacementDivergenceTerm{displacement_.data()},
-                                 [&](std::size_t i, const Vec3& dxi, Scalar sum) {
-                                     const Scalar predicted = rhoAdvected_[i] + m * sum + dxi.dot(wallGrad_[i]);
+            forEachCachedPairSum(s, DisplacementDivergenceTerm{pressureAcceleration_.data()},
+                                 [&](std::size_t i, const Vec3& ai, Scalar sum) {
+                                     const Scalar predicted = rhoAdvected_[i] + dt2 * (m * sum + ai.dot(wallGrad_[i]));
                                      rhoPredicted_[i] = predicted;
                                      const Scalar next = std::max(p[i] + relax * diagonal_[i] * (predicted - rho0), Scalar(0));
                                      pNext_[i] = next;
@@ -239,11 +240,11 @@ public:
             p.swap(pNext_);
             q_.swap(qNext_);
             forEachCachedPairSum(s, PressureTerm{q_.data()},
-                                 [&](std::size_t i, Scalar qi, const Vec3& push) { setDisplacement(i, qi, push); });
+                                 [&](std::size_t i, Scalar qi, const Vec3& push) { setPressureAcceleration(i, qi, push); });
             ++iterations;
         }
 #pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) a[i] += invDt2 * displacement_[i];
+        for (std::size_t i = 0; i < n; ++i) a[i] += pressureAcceleration_[i];
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
     }
 
@@ -258,10 +259,10 @@ private:
     std::vector<Scalar> diagonal_, invRho2_;
     std::vector<Vec3> wallGrad_, pressureWallGrad_;
     std::vector<Scalar> wallRate_;
-    // the solve's: v_adv, q = p/ρ² (and the next), the next p, Δx, ρ_adv, ρ*, Σ_b M_b q_b ∇W_ib
+    // the solve's: v_adv, q = p/ρ² (and the next), the next p, a_p = Δx/Δt², ρ_adv, ρ*, Σ_b M_b q_b ∇W_ib
     std::vector<Vec3> advected_;
     std::vector<Scalar> q_, qNext_, pNext_;
-    std::vector<Vec3> displacement_, ownWallPush_;
+    std::vector<Vec3> pressureAcceleration_, ownWallPush_;
     std::vector<Scalar> rhoAdvected_, rhoPredicted_;
     SolverStats stats_;
 };
