@@ -340,14 +340,16 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
               << " iterations on average; final max density error " << 100 * maxErr << " %, max speed " << vMax
               << " m/s, RMS speed " << rms << " m/s; bottom row " << pBottom << " Pa (error " << 100 * bottomError
               << " % of rho0 g H), mid-depth row " << pMid << " Pa (error " << 100 * midError << " %)\n";
-    // measured: 0.22 %, RMS 0.017 m/s (sqrt(g H) = 1.7 m/s), max 0.073 m/s; the bottom row 7.5 %
-    // above ρ0 g (H − z) (next to the mirrored Akinci floor every solver's is: wcsph's too, see
-    // ContractTest), the mid-depth row 1.2 %
+    // measured on the tutorial's adami walls (their pressure follows each iteration): max density
+    // error 0.18 %, RMS 0.0006 m/s (sqrt(g H) = 1.7 m/s), max 0.0034 m/s; both rows 4.2 % below
+    // ρ0 g (H − z), a uniform offset: the surface layer, short of neighbours, clamps at p = 0 and
+    // the column reads as if ~2.5 Δx shorter (on mirrored Akinci walls: bottom +7.5 %, mid 1.2 %)
     EXPECT_LE(maxErr, 0.01);
     EXPECT_LT(rms, 0.03);
     EXPECT_LT(vMax, 0.15);
-    EXPECT_LT(std::abs(bottomError), 0.11);
-    EXPECT_LT(std::abs(midError), 0.03);
+    EXPECT_LT(std::abs(bottomError), 0.06);
+    EXPECT_LT(std::abs(midError), 0.06);
+    EXPECT_LT(std::abs(bottomError - midError), 0.01); // the gradient itself is ρ0 g
 }
 
 } // namespace

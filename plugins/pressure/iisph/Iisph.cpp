@@ -45,6 +45,7 @@
 //   pressure { type iisph; omega 0.5; warmStart 0.5; }
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average; minIterations 2;
 //                           maxIterations 100; }
+#include "BoundaryModel.hpp"
 #include "IterativeSolverControls.hpp"
 #include "Plugin.hpp"
 #include "PairLoop.hpp"
@@ -202,14 +203,19 @@ public:
             p[i] = diagonal_[i] > 0 ? w * p[i] : Scalar(0);
             q_[i] = p[i] * invRho2_[i];
         }
-        // the walls with their own pressure: a constant force within the solve
+        // the walls with their own pressure (adami: extrapolated from the fluid's) follow the
+        // fluid's pressure at every iteration, as in pcisph; within an iteration their force is
+        // constant (a_ii leaves out the wall's dependence on p_i)
         bool ownPressureWalls = false;
         for (const auto& wall : s.walls) ownPressureWalls = ownPressureWalls || (wall.mass && !wall.pressureMirrored);
-        if (ownPressureWalls) {
+        const auto pushOfOwnPressureWalls = [&] {
+            if (!ownPressureWalls) return;
+            if (s.boundaryModel) s.boundaryModel->updatePressure(s, p);
             ownWallPush_.resize(n);
             forEachPairSum(s, s.fluid.position(), OwnWallPressureTerm{},
                            [&](std::size_t i, const auto&, const Vec3& sum) { ownWallPush_[i] = sum; });
-        }
+        };
+        pushOfOwnPressureWalls();
         // a_p,i (= Δx_i/Δt²) of the pressure q = p/ρ², given Σ_j (q_i + q_j) ∇W_ij
         const auto setPressureAcceleration = [&](std::size_t i, Scalar qi, const Vec3& push) {
             Vec3 f = m * push + qi * pressureWallGrad_[i];
@@ -239,6 +245,7 @@ public:
             if (controls_.done(iterations, err.max, err.avg)) break;
             p.swap(pNext_);
             q_.swap(qNext_);
+            pushOfOwnPressureWalls();
             forEachCachedPairSum(s, PressureTerm{q_.data()},
                                  [&](std::size_t i, Scalar qi, const Vec3& push) { setPressureAcceleration(i, qi, push); });
             ++iterations;
