@@ -1,0 +1,165 @@
+"""The physics of a tutorial's run, read from the times it wrote (run with pvpython).
+
+    pvpython tutorialPhysics.py <case> [checks]
+
+checks (each optional; a failed one prints why and the script exits 1):
+  --hydrostatic-start TOL   at t = 0 every fluid particle's pressure is within TOL rho0 g H of
+                            rho0 g (H - z), H the top of its fluid block (one block: the highest particle)
+  --max-density-error E     at every written time after t = 0: max |rho - rho0|/rho0 <= E
+  --inside                  no fluid particle leaves the walls' box (constant/geometry's walls)
+  --front CSV SERIES A N BAND
+                            the surge front (largest horizontal coordinate, from the column's back
+                            wall) against the experiment's series (T = N t sqrt(g/A), Z = x/A) at
+                            every written time inside the data's T range: |Z - Z_exp| <= BAND
+  --energy FRACTION         kinetic + potential energy of the fluid never exceeds its initial
+                            value by more than FRACTION of the energy it can release (initial
+                            minus the still, levelled state's)
+  --still-bottom TOL SPEED  (a tank at rest) the bottom row's mean pressure within TOL of
+                            rho0 g H and the largest speed below SPEED at the last time
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ.get("SPINDRIFT_DIR", ""), "etc", "python"))
+import spindriftValidation as sv  # noqa: E402
+
+failures = []
+
+
+def check(ok, message):
+    print(("ok   " if ok else "FAIL ") + message)
+    if not ok:
+        failures.append(message)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("case")
+    ap.add_argument("--hydrostatic-start", type=float)
+    ap.add_argument("--max-density-error", type=float)
+    ap.add_argument("--inside", action="store_true")
+    ap.add_argument("--front", nargs=5, metavar=("CSV", "SERIES", "A", "N", "BAND"))
+    ap.add_argument("--energy", type=float)
+    ap.add_argument("--still-bottom", nargs=2, type=float, metavar=("TOL", "SPEED"))
+    args = ap.parse_args()
+    case = args.case
+
+    props = sv.fluid_properties(case)
+    rho0 = props["rho0"]
+    gvec = np.asarray(props.get("gravity", np.array([0.0, -9.81, 0.0])), dtype=float)
+    g = float(np.linalg.norm(gvec))
+    up = int(np.argmax(np.abs(gvec)))  # the vertical axis
+    horizontal = 0
+    dx = props["particleSpacing"]
+    times = sv.written_times(case)
+    check(len(times) >= 2, "%d times written" % len(times))
+    if len(times) < 2:
+        return
+    states = []
+    for t, d in times:
+        path = os.path.join(case, d, "fluid.vtp")
+        x, v = sv.read_vtp(path, "velocity")
+        _, rho = sv.read_vtp(path, "density")
+        _, p = sv.read_vtp(path, "pressure")
+        states.append((t, x, v, rho, p))
+    t0, x0, v0, rho_0, p0 = states[0]
+    dims = int(props.get("dimension", 2))
+    volume = dx ** dims
+
+    if args.hydrostatic_start is not None:
+        H = x0[:, up].max() + 0.5 * dx  # the block's top: half a spacing above its highest row
+        expected = rho0 * g * (H - x0[:, up])
+        err = np.max(np.abs(p0 - expected)) / (rho0 * g * H)
+        check(err <= args.hydrostatic_start,
+              "t = 0: max |p - rho0 g (H - z)| = %.2f %% of rho0 g H = %.0f Pa (bound %.1f %%)"
+              % (100 * err, rho0 * g * H, 100 * args.hydrostatic_start))
+
+    if args.max_density_error is not None:
+        # compression, as the solvers' logs: a summed density falls short at a free surface by
+        # design, and a deficit is not what the pressure solver controls
+        worst = max((np.max(rho - rho0) / rho0, t) for t, _, _, rho, _ in states[1:])
+        check(worst[0] <= args.max_density_error,
+              "max compression (rho - rho0)/rho0 after t = 0: %.2f %% at t = %g (bound %.1f %%)"
+              % (100 * worst[0], worst[1], 100 * args.max_density_error))
+
+    if args.inside:
+        # the walls' inner faces; a particle centre may reach half a spacing past a face (its own
+        # volume against the wall's) before it counts as gone through
+        lo, hi = sv.geometry_box("walls", case)
+        lo = lo[:dims] - 0.5 * dx
+        hi = hi[:dims] + 0.5 * dx
+        hi[up] = np.inf  # the walls' open top: a splash may rise above them
+        n = len(x0)
+        worst = (-np.inf, 0.0, 0)
+        for t, x, _, _, _ in states:
+            past = np.maximum(lo - x[:, :dims], x[:, :dims] - hi).max(axis=1)  # > 0: through a wall
+            if past.max() > worst[0]:
+                worst = (past.max(), t, int(np.sum(past > 0)))
+        counts_kept = all(len(x) == n for _, x, _, _, _ in states)
+        check(worst[2] == 0 and counts_kept,
+              "no fluid particle through a wall (the deepest centre %.2f dx past a wall face at t = %g, limit 0.5; "
+              "%d through; %d particles at every time: %s)"
+              % ((worst[0] + 0.5 * dx) / dx, worst[1], worst[2], n, counts_kept))
+
+    def energy(x, v):
+        return float(np.sum(0.5 * np.sum(v * v, axis=1) + g * x[:, up]))  # per unit mass
+
+    if args.energy is not None:
+        lo, hi = sv.geometry_box("walls", case)
+        # the still, levelled state: the same volume of particles spread over the tank's floor
+        floor = np.prod([hi[k] - lo[k] for k in range(dims) if k != up])
+        level = len(x0) * volume / floor
+        rest = len(x0) * g * (lo[up] + 0.5 * level)
+        e0 = energy(x0, v0)
+        releasable = e0 - rest
+        worst = max((energy(x, v) - e0, t) for t, x, v, _, _ in states[1:])
+        check(releasable > 0 and worst[0] <= args.energy * releasable,
+              "energy above its initial value: %.2f %% of the releasable energy at most (t = %g; bound %.1f %%)"
+              % (100 * worst[0] / releasable, worst[1], 100 * args.energy))
+        final = energy(states[-1][1], states[-1][2]) - rest
+        print("     energy left at t = %g: %.1f %% of the releasable" % (states[-1][0], 100 * final / releasable))
+
+    if args.front:
+        csv, series, a, n, band = args.front
+        a, n, band = float(a), float(n), float(band)
+        rows = [r for r in sv.read_csv(os.path.join(case, csv)) if r["series"] == series]
+        check(len(rows) > 2, "%d rows of series %s in %s" % (len(rows), series, csv))
+        T_exp = np.array([float(r["T"]) for r in rows])
+        Z_exp = np.array([float(r["Z"]) for r in rows])
+        origin = x0[:, horizontal].min() - 0.5 * dx  # the column's back wall
+        worst = (0.0, 0.0, 0.0, 0.0)
+        compared = 0
+        for t, x, _, _, _ in states[1:]:
+            T = n * t * np.sqrt(g / a)
+            if T < T_exp[0] or T > T_exp[-1]:
+                continue
+            Z = (x[:, horizontal].max() + 0.5 * dx - origin) / a
+            Ze = float(np.interp(T, T_exp, Z_exp))
+            compared += 1
+            if abs(Z - Ze) >= abs(worst[0]):
+                worst = (Z - Ze, T, Z, Ze)
+        check(compared >= 3 and abs(worst[0]) <= band,
+              "front against %s (%s), %d times: largest |Z - Z_exp| = %.3f at T = %.2f (Z %.2f, exp %.2f; band %.2f)"
+              % (csv, series, compared, abs(worst[0]), worst[1], worst[2], worst[3], band))
+
+    if args.still_bottom:
+        tol, speed = args.still_bottom
+        t, x, v, rho, p = states[-1]
+        H = x0[:, up].max() + 0.5 * dx
+        bottom = x[:, up] < x[:, up].min() + 0.5 * dx
+        zb = float(np.mean(x[bottom, up]))
+        err = (float(np.mean(p[bottom])) - rho0 * g * (H - zb)) / (rho0 * g * H)
+        vmax = float(np.max(np.linalg.norm(v, axis=1)))
+        check(abs(err) <= tol and vmax <= speed,
+              "t = %g: bottom row's pressure %+.2f %% of rho0 g H off rho0 g (H - z) (bound %.1f %%), "
+              "max speed %.3g m/s (bound %g)" % (t, 100 * err, 100 * tol, vmax, speed))
+
+
+main()
+if failures:
+    print("%d check(s) failed" % len(failures))
+    sys.exit(1)
+print("all checks passed")
