@@ -33,4 +33,8 @@ if(PVPYTHON)
   tutorial_physics(hydrostaticTank2D hydrostaticTank2D ""
     --hydrostatic-start 0.05 --max-density-error 0.01 --inside --still-bottom 0.03 0.05)
   tutorial_physics(pereaWave pereaWave "" --inside --energy 0.02)
+  # a fluid, a fixed tank and a moving paddle (three blocks in ParaView); quick mode: 0.4 s of
+  # 1.5 s (the whole run: volume within 0.12 %, surface +0.082 m, compression 1.1 %)
+  tutorial_physics(movingPaddle2D movingPaddle2D "system/controlDict:endTime=0.4"
+    --hydrostatic-start 0.05 --max-density-error 0.02 --inside --volume 0.01 --rise 0.01 --outside-of paddle)
 endif()

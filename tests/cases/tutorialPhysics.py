@@ -14,6 +14,11 @@ checks (each optional; a failed one prints why and the script exits 1):
   --energy FRACTION         kinetic + potential energy of the fluid never exceeds its initial
                             value by more than FRACTION of the energy it can release (initial
                             minus the still, levelled state's)
+  --volume TOL              the fluid's volume, sum of m/rho, within TOL of its initial value at
+                            every time, and its particle count kept (mass conserved)
+  --rise DH                 the free surface's highest point rises by at least DH [m] at some time
+  --outside-of WALL         no fluid particle centre inside the box of the wall system WALL's
+                            particle centres (a moving wall: its own file at every time)
   --still-bottom TOL SPEED  (a tank at rest) the bottom row's mean pressure within TOL of
                             rho0 g H and the largest speed below SPEED at the last time
 """
@@ -25,6 +30,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.environ.get("SPINDRIFT_DIR", ""), "etc", "python"))
 import spindriftValidation as sv  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 
 failures = []
 
@@ -43,6 +49,9 @@ def main():
     ap.add_argument("--inside", action="store_true")
     ap.add_argument("--front", nargs=5, metavar=("CSV", "SERIES", "A", "N", "BAND"))
     ap.add_argument("--energy", type=float)
+    ap.add_argument("--volume", type=float)
+    ap.add_argument("--rise", type=float)
+    ap.add_argument("--outside-of")
     ap.add_argument("--still-bottom", nargs=2, type=float, metavar=("TOL", "SPEED"))
     args = ap.parse_args()
     case = args.case
@@ -144,6 +153,32 @@ def main():
         check(compared >= 3 and abs(worst[0]) <= band,
               "front against %s (%s), %d times: largest |Z - Z_exp| = %.3f at T = %.2f (Z %.2f, exp %.2f; band %.2f)"
               % (csv, series, compared, abs(worst[0]), worst[1], worst[2], worst[3], band))
+
+    if args.volume is not None:
+        v0 = np.sum(1 / rho_0)
+        worst = max((abs(np.sum(1 / rho) / v0 - 1), t) for t, _, _, rho, _ in states[1:])
+        kept = all(len(x) == len(x0) for _, x, _, _, _ in states)
+        check(worst[0] <= args.volume and kept,
+              "fluid volume sum m/rho within %.3f %% of its start (at t = %g; bound %.1f %%), %d particles at every time: %s"
+              % (100 * worst[0], worst[1], 100 * args.volume, len(x0), kept))
+
+    if args.rise is not None:
+        top0 = x0[:, up].max()
+        rise = max((x[:, up].max() - top0, t) for t, x, _, _, _ in states[1:])
+        check(rise[0] >= args.rise, "the surface rises by %.4f m at most (t = %g; at least %g)" % (rise[0], rise[1], args.rise))
+
+    if args.outside_of:
+        worst = (0, 0.0)
+        for (t, d), (_, x, _, _, _) in zip(times, states):
+            path = os.path.join(case, d, args.outside_of + ".vtp")
+            if not os.path.exists(path):
+                path = os.path.join(case, times[0][1], args.outside_of + ".vtp")  # a fixed wall: its first file
+            w = vtk_to_numpy(sv.read_polydata(path).GetPoints().GetData())
+            lo, hi = w[:, :dims].min(axis=0), w[:, :dims].max(axis=0)
+            inside = int(np.sum(np.all((x[:, :dims] > lo) & (x[:, :dims] < hi), axis=1)))
+            if inside > worst[0]:
+                worst = (inside, t)
+        check(worst[0] == 0, "no fluid particle inside the wall '%s' (%d at t = %g)" % (args.outside_of, worst[0], worst[1]))
 
     if args.still_bottom:
         tol, speed = args.still_bottom

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # A tutorial as a user runs it (its input cloned, the solver run), then its physics checked on
-# the times it wrote (tutorialPhysics.py: hydrostatic start, density, walls, front, energy).
+# the times it wrote: ParaView opens every time with a block per particle system
+# (pvpython_check.py), and tutorialPhysics.py checks hydrostatic start, density, walls, front,
+# energy, volume as asked.
 #   tutorialPhysics.sh <spindrift> <tutorial dir> <pvpython> <edits> [checks...]
 # <edits>: ','-separated 'file:keyword=value' set in the clone first (a quick mode: a shorter
 # endTime, a coarser spacing, another pressure solver), '' for the tutorial as shipped.
@@ -25,4 +27,9 @@ done
 cd "$case"
 "$solver" -case . > log.spindrift 2>&1 || { tail -n 20 log.spindrift; exit 1; }
 grep '^End' log.spindrift
+# ParaView opens every written time with a block per particle system: the fluid and each wall
+times=$(find . -maxdepth 2 -name fluid.vtp | wc -l)
+first=$(dirname "$(find . -maxdepth 2 -name fluid.vtp | sort -t/ -k2 -g | head -1)")
+systems=$(find "$first" -maxdepth 1 -name '*.vtp' | wc -l)
+"$pvpython" "$here/pvpython_check.py" --blocks "$systems" "$(basename "$case").pvd" "$times" velocity pressure density id
 "$pvpython" "$here/tutorialPhysics.py" . "$@"
