@@ -22,8 +22,10 @@ foreach(spec
 endforeach()
 add_test(NAME Bench.QuickDamBreak
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/benchQuick.sh $<TARGET_FILE:spindriftBench> ${validationDir}/damBreak2D)
+add_test(NAME Bench.Pick
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/benchPick.sh $<TARGET_FILE:spindriftBench> ${validationDir}/hydrostaticTank2D)
 add_test(NAME Stress.Quick COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/stressQuick.sh $<TARGET_FILE:spindriftStress>)
 add_test(NAME Bench.SpeedQuick COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/speedBenchmarkQuick.sh $<TARGET_FILE_DIR:spindriftSolver>)
 set_tests_properties(Validation.hydrostaticTank2D Validation.damBreak2D Validation.poiseuille2D
-  Validation.taylorGreen2D Bench.QuickDamBreak Stress.Quick Bench.SpeedQuick
+  Validation.taylorGreen2D Bench.QuickDamBreak Bench.Pick Stress.Quick Bench.SpeedQuick
   PROPERTIES ENVIRONMENT "${validationEnv}" TIMEOUT 600 LABELS validation)

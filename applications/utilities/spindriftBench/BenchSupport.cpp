@@ -317,13 +317,21 @@ void CaseDictionaries::apply(const Combination& c, const Dictionary* presets) {
         if (splitLast(o.key).second != "type") apply(o, presets);
 }
 
-void CaseDictionaries::write() const {
+void CaseDictionaries::write(const std::string& header) const {
     for (const auto& f : files_) {
         if (!f.changed) continue;
         fs::create_directories((dir_ / f.relative).parent_path());
         std::ofstream out(dir_ / f.relative);
-        out << "// written by spindrift's bench utilities (overrides applied)\n" << f.dict.toString();
+        out << header << f.dict.toString();
+        if (!out.flush()) throw std::runtime_error("cannot write " + (dir_ / f.relative).string());
     }
+}
+
+std::vector<std::string> CaseDictionaries::changedFiles() const {
+    std::vector<std::string> changed;
+    for (const auto& f : files_)
+        if (f.changed) changed.push_back(f.relative);
+    return changed;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -82,8 +82,10 @@ public:
     void apply(const Override& o, const Dictionary* presets);
     // Applies a combination: type overrides first.
     void apply(const Combination& c, const Dictionary* presets);
-    // Writes the dictionaries that changed.
-    void write() const;
+    // Writes the dictionaries that changed, each under a header comment.
+    void write(const std::string& header = "// written by spindrift's bench utilities (overrides applied)\n") const;
+    // The case-relative paths of the dictionaries that changed (e.g. "system/sphSchemes").
+    std::vector<std::string> changedFiles() const;
     Dictionary& file(const std::string& relative); // e.g. "system/controlDict"
 
 private:

@@ -18,6 +18,12 @@
 // Output: <output>/bench.csv (combination, status, wall time, steps, average iterations, max
 // density error, the case's error figure, Pareto flag), <output>/bench.png (wall time against
 // error, Pareto front marked; python3 + matplotlib) and a markdown table on stdout.
+//
+// -pick "FIGURE<=VALUE" (FIGURE: the case's error figure, e.g. frontRMS, or maxDensityError in
+// %): after the runs, the fastest combination whose |FIGURE| is at most VALUE — a point of the
+// Pareto front — is written into the case's own dictionaries (system/sphSchemes, and any other
+// the combination sets), each under a comment citing its bench.csv row; the file it replaces is
+// kept as <file>.orig. No combination meeting the bound: the case is left alone, exit status 1.
 #include "BenchSupport.hpp"
 #include "Log.hpp"
 
@@ -26,6 +32,9 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
+#include <optional>
+#include <sstream>
 #include <regex>
 
 namespace po = boost::program_options;
@@ -58,6 +67,31 @@ void markPareto(std::vector<Row>& rows) {
             }
         }
     }
+}
+
+struct PickRequest {
+    std::string figure; // the case's figure name, or maxDensityError (%)
+    double bound = 0;
+};
+
+PickRequest parsePick(const std::string& text) {
+    static const std::regex pattern(R"(^\s*([A-Za-z_][A-Za-z0-9_]*)\s*<=\s*([-+0-9.eE]+)\s*$)");
+    std::smatch m;
+    char* end = nullptr;
+    if (std::regex_match(text, m, pattern)) {
+        const std::string number = m[2];
+        const double bound = std::strtod(number.c_str(), &end);
+        if (end && *end == '\0' && std::isfinite(bound) && bound >= 0) return {m[1], bound};
+    }
+    throw std::runtime_error("-pick \"" + text + "\": expected FIGURE<=VALUE with VALUE >= 0, e.g. -pick \"frontRMS<=0.15\" "
+                             "(FIGURE: the case's error figure, or maxDensityError in %)");
+}
+
+// |the picked figure| of a row, NaN if the row has none.
+double pickedValue(const Row& r, const PickRequest& pick) {
+    if (r.status != "ok") return std::nan("");
+    if (pick.figure == "maxDensityError") return r.end.found ? 100 * r.end.maxDensityError : std::nan("");
+    return r.figureName == pick.figure ? std::abs(r.figure) : std::nan("");
 }
 
 std::vector<std::string> keysOf(const std::vector<Combination>& combos) {
@@ -100,6 +134,64 @@ std::vector<std::string> csvValues(const Row& r, const std::vector<std::string>&
     return v;
 }
 
+// -pick: the fastest row meeting the bound, written into the case. Returns the exit status.
+int pickCombination(const PickRequest& pick, const std::vector<Row>& rows, const fs::path& caseDir,
+                    const fs::path& csv, const Dictionary* presets, bool quick) {
+    const Row* best = nullptr;
+    std::size_t bestRow = 0, measured = 0;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+        const double v = pickedValue(rows[k], pick);
+        if (!std::isfinite(v)) continue;
+        ++measured;
+        if (v <= pick.bound && (!best || rows[k].end.wallSeconds < best->end.wallSeconds)) {
+            best = &rows[k];
+            bestRow = k + 1;
+        }
+    }
+    const std::string request = pick.figure + "<=" + csvNumber(pick.bound);
+    if (measured == 0) {
+        std::string figures;
+        for (const auto& r : rows)
+            if (!r.figureName.empty() && figures.find(r.figureName) == std::string::npos)
+                figures += (figures.empty() ? "" : ", ") + r.figureName;
+        std::cerr << "spindriftBench: -pick " << request << ": no run measured " << pick.figure << " (the case's figure: "
+                  << (figures.empty() ? "none" : figures) << "; or maxDensityError); the case is unchanged\n";
+        return 1;
+    }
+    if (!best) {
+        double closest = std::numeric_limits<double>::infinity();
+        for (const auto& r : rows)
+            if (std::isfinite(pickedValue(r, pick))) closest = std::min(closest, pickedValue(r, pick));
+        std::cerr << "spindriftBench: -pick " << request << ": no combination meets it (the best reached "
+                  << closest << "); the case is unchanged\n";
+        return 1;
+    }
+    CaseDictionaries dicts(caseDir);
+    dicts.apply(best->combination, presets);
+    if (dicts.changedFiles().empty()) {
+        std::cout << "Picked for " << request << ": the case as it is (bench.csv row " << bestRow << "); nothing to change"
+                  << std::endl;
+        return 0;
+    }
+    std::ostringstream header;
+    header << "// spindriftBench -pick \"" << request << "\": the fastest of " << measured << " measured combinations"
+           << " meeting it" << (quick ? " (measured with -quick)" : "") << ",\n// " << csv.string() << " row " << bestRow
+           << ": " << combinationLabel(best->combination) << ", " << csvNumber(best->end.wallSeconds, 4) << " s, "
+           << pick.figure << " " << csvNumber(pickedValue(*best, pick), 5) << ".\n"
+           << "// The file it replaced (with its comments) is kept beside it as .orig.\n";
+    for (const auto& relative : dicts.changedFiles()) {
+        const fs::path file = caseDir / relative, orig = caseDir / (relative + ".orig");
+        if (fs::exists(file) && !fs::exists(orig)) fs::copy_file(file, orig); // the first original is kept
+    }
+    dicts.write(header.str());
+    std::cout << "Picked for " << request << ": " << combinationLabel(best->combination) << " ("
+              << csvNumber(best->end.wallSeconds, 4) << " s, " << pick.figure << " " << csvNumber(pickedValue(*best, pick), 5)
+              << ", bench.csv row " << bestRow << ") written into";
+    for (const auto& relative : dicts.changedFiles()) std::cout << " " << (caseDir / relative).string();
+    std::cout << std::endl;
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -120,6 +212,9 @@ int main(int argc, char** argv) {
         ("keep", "keep every run's directory under <output>/runs")
         ("casePlots", "let each run's Allrun draw its plot (skipped by default: SPINDRIFT_NO_PLOT=1)")
         ("noPlot", "do not draw bench.png")
+        ("pick", po::value<std::string>(),
+         "\"FIGURE<=VALUE\": write the fastest combination meeting the bound into the case's dictionaries "
+         "(the replaced files kept as .orig)")
         ("list", "list the combinations and stop");
     po::variables_map vm;
     if (const auto status = parseCommandLine(argc, argv, options, "spindriftBench", vm)) return *status;
@@ -134,6 +229,8 @@ int main(int argc, char** argv) {
             throw std::runtime_error("'" + caseDir.string() + "' is not a case (no system/)");
         const std::string caseName = fs::weakly_canonical(caseDir).filename().string();
         const auto combos = requestedCombinations(vm);
+        std::optional<PickRequest> pick;
+        if (vm.count("pick")) pick = parsePick(vm["pick"].as<std::string>());
         if (vm.count("list")) {
             const auto names = uniqueNames(combos);
             for (std::size_t k = 0; k < combos.size(); ++k) std::cout << names[k] << "  " << combinationLabel(combos[k]) << '\n';
@@ -255,6 +352,7 @@ int main(int argc, char** argv) {
                           {(output / "bench.csv").string(), (output / "bench.png").string(), caseName + (quick ? " (quick)" : "")},
                           output, 120))
             std::cout << "Plot: " << (output / "bench.png").string() << std::endl;
+        if (pick) return pickCombination(*pick, rows, caseDir, output / "bench.csv", presets, quick);
         return 0;
     } catch (const std::exception& e) {
         std::cerr << "spindriftBench: error: " << e.what() << std::endl;
