@@ -42,6 +42,7 @@
 //   pressure { type dfsph; warmStart 0.5; divergenceSolve yes; checkPositions no; }
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average; minIterations 2;
 //                           maxIterations 100; maxDivergenceError 0.001; maxDivergenceIterations 100; }
+#include "DensityAndGradientSums.hpp"
 #include "IterativeSolverControls.hpp"
 #include "Log.hpp"
 #include "Plugin.hpp"
@@ -52,41 +53,6 @@
 
 namespace {
 using namespace spindrift;
-
-// ρ_i, the factor α_i and the wall sums at positions x; every fluid pair's ∇W_ij goes to the
-// scene's cache (by its place k in the lists).
-struct DensityAndFactorsTerm {
-    struct Sum {
-        Scalar w = 0, squares = 0, wall = 0, wallRate = 0; // Σ W_ij, Σ |∇W_ij|², Σ M_b W_ib, Σ M_b v_b·∇W_ib
-        Vec3 grad = Vec3::Zero(), wallGrad = Vec3::Zero(); // Σ ∇W_ij, Σ M_b ∇W_ib
-    };
-    static constexpr bool usesGradient = true;
-    struct Particle {};
-    const KernelTable& kt;
-    Vec3* gradients;
-    Particle particle(std::size_t) const { return {}; }
-    void fluid(const Particle&, const Pair& q, Sum& sum) const {
-        sum.w += kt.WSq(q.r2);
-        gradients[q.k] = q.gradW;
-        sum.grad += q.gradW;
-        sum.squares += q.gradW.squaredNorm();
-    }
-    void wall(const Particle&, const WallPair& q, Sum& sum) const {
-        sum.wall += q.mass() * kt.WSq(q.r2);
-        const Vec3 g = q.mass() * q.gradW;
-        sum.wallGrad += g;
-        sum.wallRate += q.wall.v[q.j].dot(g);
-    }
-};
-
-// Σ_j (u_i − u_j)·∇W_ij over the cached gradients: the fluid part of Dρ_i/Dt (over m).
-struct DensityRateTerm {
-    using Sum = Scalar;
-    using Particle = Vec3; // u_i
-    const Vec3* u;
-    Particle particle(std::size_t i) const { return u[i]; }
-    void cached(const Vec3& ui, Index j, const Vec3& gradW, Sum& sum) const { sum += (ui - u[j]).dot(gradW); }
-};
 
 // Σ_j (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij over the cached gradients.
 struct StiffnessTerm {
@@ -266,7 +232,7 @@ private:
         const Scalar m = s.fluid.particleMass();
         const Vec3* g = wallGradient_->data();
         const Scalar* wallRate = wallRate_->data();
-        forEachCachedPairSum(s, DensityRateTerm{velocity_.data()}, [&](std::size_t i, const Vec3& ui, Scalar fluid) {
+        forEachCachedPairSum(s, CachedDivergenceTerm{velocity_.data()}, [&](std::size_t i, const Vec3& ui, Scalar fluid) {
             then(i, m * fluid + ui.dot(g[i]) - wallRate[i]);
         });
     }
@@ -282,8 +248,8 @@ private:
         auto& wallRate = *wallRate_;
         s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
         s.gradients.invalidate();
-        forEachPairSum(s, x, DensityAndFactorsTerm{s.kernel, s.gradients.values.data()},
-                       [&](std::size_t i, const auto&, const DensityAndFactorsTerm::Sum& sum) {
+        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.kernel, s.gradients.values.data()},
+                       [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) {
                            rho[i] = m * (w0 + sum.w) + sum.wall;
                            wallGradient[i] = sum.wallGrad;
                            wallRate[i] = sum.wallRate;

@@ -46,6 +46,7 @@
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average; minIterations 2;
 //                           maxIterations 100; }
 #include "BoundaryModel.hpp"
+#include "DensityAndGradientSums.hpp"
 #include "IterativeSolverControls.hpp"
 #include "Plugin.hpp"
 #include "PairLoop.hpp"
@@ -55,33 +56,6 @@
 
 namespace {
 using namespace spindrift;
-
-// ρ_i and the sums that a_ii and the wall terms need, at the step's positions; every fluid
-// pair's ∇W_ij goes to the scene's cache (by its place k in the lists).
-struct DensityAndSumsTerm {
-    struct Sum {
-        Scalar w = 0, squares = 0, wall = 0, wallRate = 0; // Σ W_ij, Σ |∇W_ij|², Σ M_b W_ib, Σ M_b v_b·∇W_ib
-        Vec3 grad = Vec3::Zero(), wallGrad = Vec3::Zero(), mirroredGrad = Vec3::Zero(); // Σ ∇W_ij, Σ M_b ∇W_ib, Σ μ_b M_b ∇W_ib
-    };
-    static constexpr bool usesGradient = true;
-    struct Particle {};
-    const KernelTable& kt;
-    Vec3* gradients;
-    Particle particle(std::size_t) const { return {}; }
-    void fluid(const Particle&, const Pair& q, Sum& sum) const {
-        sum.w += kt.WSq(q.r2);
-        gradients[q.k] = q.gradW;
-        sum.grad += q.gradW;
-        sum.squares += q.gradW.squaredNorm();
-    }
-    void wall(const Particle&, const WallPair& q, Sum& sum) const {
-        sum.wall += q.mass() * kt.WSq(q.r2);
-        const Vec3 g = q.mass() * q.gradW;
-        sum.wallGrad += g;
-        if (q.wall.mirrored) sum.mirroredGrad += g;
-        sum.wallRate += q.wall.v[q.j].dot(g);
-    }
-};
 
 // Σ_b M_b p_b/ρ_b² ∇W_ib over the walls with their own pressure (the walls alone).
 struct OwnWallPressureTerm {
@@ -127,16 +101,6 @@ struct PressureTerm {
     void cached(Scalar qi, Index j, const Vec3& gradW, Sum& sum) const { sum += (qi + q[j]) * gradW; }
 };
 
-// Σ_j (a_i − a_j)·∇W_ij of the pressure accelerations: Δt² times it is the density change of
-// the displacements Δx = Δt² a_p.
-struct DisplacementDivergenceTerm {
-    using Sum = Scalar;
-    using Particle = Vec3;
-    const Vec3* a;
-    Particle particle(std::size_t i) const { return a[i]; }
-    void cached(const Vec3& ai, Index j, const Vec3& gradW, Sum& sum) const { sum += (ai - a[j]).dot(gradW); }
-};
-
 class Iisph final : public PressureModel {
 public:
     explicit Iisph(const ModelContext& c)
@@ -165,8 +129,8 @@ public:
         wallRate_.resize(n);
         s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
         s.gradients.invalidate();
-        forEachPairSum(s, x, DensityAndSumsTerm{s.kernel, s.gradients.values.data()},
-                       [&](std::size_t i, const auto&, const DensityAndSumsTerm::Sum& sum) {
+        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.kernel, s.gradients.values.data()},
+                       [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) {
                            const Scalar r = m * (w0 + sum.w) + sum.wall;
                            rho[i] = r;
                            invRho2_[i] = 1 / (r * r);
@@ -233,7 +197,7 @@ public:
         CompressionError err;
         for (;;) {
             // ρ* of the current pressure, and the next pressure (taken if ρ* misses η)
-            forEachCachedPairSum(s, DisplacementDivergenceTerm{pressureAcceleration_.data()},
+            forEachCachedPairSum(s, CachedDivergenceTerm{pressureAcceleration_.data()},
                                  [&](std::size_t i, const Vec3& ai, Scalar sum) {
                                      const Scalar predicted = rhoAdvected_[i] + dt2 * (m * sum + ai.dot(wallGrad_[i]));
                                      rhoPredicted_[i] = predicted;

@@ -1,0 +1,49 @@
+// Pair terms shared by the implicit solvers that cache ∇W_ij once per neighbour search and
+// stream it through their iterations (dfsph, iisph; libsrc/PairLoop.hpp's forEachPairSum and
+// forEachCachedPairSum).
+#pragma once
+
+#include "PairLoop.hpp"
+
+namespace spindrift {
+
+// ρ_i's kernel sums and the gradient sums the solvers' diagonals and wall terms need, at the
+// step's positions; every fluid pair's ∇W_ij goes to the scene's cache (by its place k in the
+// lists). ρ_i = m (W(0) + w) + wall.
+struct DensityAndGradientSumsTerm {
+    struct Sum {
+        Scalar w = 0, squares = 0, wall = 0, wallRate = 0; // Σ W_ij, Σ |∇W_ij|², Σ M_b W_ib, Σ M_b v_b·∇W_ib
+        Vec3 grad = Vec3::Zero();                          // Σ ∇W_ij
+        Vec3 wallGrad = Vec3::Zero(), mirroredGrad = Vec3::Zero(); // Σ M_b ∇W_ib, over the walls that mirror p
+    };
+    static constexpr bool usesGradient = true;
+    struct Particle {};
+    const KernelTable& kt;
+    Vec3* gradients;
+    Particle particle(std::size_t) const { return {}; }
+    void fluid(const Particle&, const Pair& q, Sum& sum) const {
+        sum.w += kt.WSq(q.r2);
+        gradients[q.k] = q.gradW;
+        sum.grad += q.gradW;
+        sum.squares += q.gradW.squaredNorm();
+    }
+    void wall(const Particle&, const WallPair& q, Sum& sum) const {
+        sum.wall += q.mass() * kt.WSq(q.r2);
+        const Vec3 g = q.mass() * q.gradW;
+        sum.wallGrad += g;
+        if (q.wall.mirrored) sum.mirroredGrad += g;
+        sum.wallRate += q.wall.v[q.j].dot(g);
+    }
+};
+
+// Σ_j (u_i − u_j)·∇W_ij over the cached gradients, for any per-particle vector u (a velocity:
+// the fluid part of Dρ_i/Dt over m; an acceleration: that of a displacement over Δt²).
+struct CachedDivergenceTerm {
+    using Sum = Scalar;
+    using Particle = Vec3; // u_i
+    const Vec3* u;
+    Particle particle(std::size_t i) const { return u[i]; }
+    void cached(const Vec3& ui, Index j, const Vec3& gradW, Sum& sum) const { sum += (ui - u[j]).dot(gradW); }
+};
+
+} // namespace spindrift
