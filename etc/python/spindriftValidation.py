@@ -24,6 +24,10 @@ FIGURE_DEFINITIONS = {
     "bottomPressureError": ("bottomPressureError [%]",
                             "bottomPressureError: |p − ρ0 g (H − z)| / (ρ0 g (H − z)) at the bottom probe, time "
                             "average over the last quarter of the run."),
+    "wallArrival": ("wallArrival: $T = t\\sqrt{g/H}$ of the front at the far wall [-]",
+                    "wallArrival: T = t √(g/H) at which the surge front (a particle centre within H/4 of the floor) is "
+                    "first within one particle spacing of the far wall (Colagrossi & Landrini 2003 dam break; "
+                    "published δ-SPH: 2.37–2.41)."),
     "velocityL2": ("velocityL2: relative L2 velocity error [-]",
                    "velocityL2: largest relative L2 error of the particle velocities against the exact solution "
                    "over the checked times, √(Σ |u − u_exact|² / Σ |u_exact|²)."),

@@ -20,6 +20,11 @@ foreach(spec
     COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/validationCase.sh $<TARGET_FILE:spindriftBench>
             ${validationDir}/${case} ${figure} ${bound} ${case}.png)
 endforeach()
+# Colagrossi & Landrini's dam break at H/20 to T = 3: the far-wall arrival within its band, no
+# particle through a wall, a physical pressure at the far wall's floor probe (bounds in the script)
+add_test(NAME Validation.damBreakColagrossi2D
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/colagrossiQuick.sh $<TARGET_FILE:spindriftSolver>
+          ${validationDir}/damBreakColagrossi2D)
 add_test(NAME Bench.QuickDamBreak
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/benchQuick.sh $<TARGET_FILE:spindriftBench> ${validationDir}/damBreak2D)
 add_test(NAME Bench.Pick
@@ -27,5 +32,5 @@ add_test(NAME Bench.Pick
 add_test(NAME Stress.Quick COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/stressQuick.sh $<TARGET_FILE:spindriftStress>)
 add_test(NAME Bench.SpeedQuick COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/speedBenchmarkQuick.sh $<TARGET_FILE_DIR:spindriftSolver>)
 set_tests_properties(Validation.hydrostaticTank2D Validation.damBreak2D Validation.poiseuille2D
-  Validation.taylorGreen2D Bench.QuickDamBreak Bench.Pick Stress.Quick Bench.SpeedQuick
+  Validation.taylorGreen2D Validation.damBreakColagrossi2D Bench.QuickDamBreak Bench.Pick Stress.Quick Bench.SpeedQuick
   PROPERTIES ENVIRONMENT "${validationEnv}" TIMEOUT 600 LABELS validation)
