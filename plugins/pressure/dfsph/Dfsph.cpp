@@ -34,8 +34,8 @@
 // the solver passes (and the viscosity, through Scene::fluidPairGradients) only stream it;
 // the walls' velocities do not change within a step, so their terms need only Σ_b M_b ∇W_ib and
 // Σ_b M_b v_b·∇W_ib per particle, also computed once.
-// Both solves warm-start from half of the last step's κ (fields dfsphKappa, dfsphKappaV:
-// restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
+// Both solves warm-start from half of the last step's κ, scaled to this step's Δt (fields
+// dfsphKappa, dfsphKappaV hold κ Δt² and κ_v Δt, as SPlisHSPlasH: restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
 // Euler gives v_{n+1} = v*, x_{n+1} = x_n + Δt v* (ResultKind::velocityChange). Wall particles b
 // have the masses M_b the boundary model gives them.
 //
@@ -141,7 +141,14 @@ public:
         if (divergenceSolve_) {
             int divergenceIterations = 0;
             auto& kv = *kappaV_;
-            warmStartVelocities(s, kv, dt);
+            // warm start only where the fluid still compresses (SPlisHSPlasH's condition: a
+            // surface particle's last push, carried into a step where it expands, shot the
+            // Colagrossi column's top layer up at 11 m/s)
+            densityRatePass(s, [&](std::size_t i, Scalar rate) {
+                const bool full = ff.count(i) + s.search.wallNeighbourCount(i) >= minNeighbours_;
+                if (!(full && rate > 0)) kv[i] = 0;
+            });
+            warmStartVelocities(s, kv, dt, invDt);
             for (;;) {
                 densityRatePass(s, [&](std::size_t i, Scalar rate) {
                     const bool full = ff.count(i) + s.search.wallNeighbourCount(i) >= minNeighbours_;
@@ -171,11 +178,11 @@ public:
         //    ρ*_i = ρ_i(x + Δt v*) + Δt (Dρ_i/Dt(v) − Dρ_i/Dt(v*)) there; the solve goes on until
         //    a check passes.
         auto& k = *kappa_;
-        warmStartVelocities(s, k, dt);
         Scalar* offset = offset_ ? offset_->data() : nullptr; // δ of the last step to start with
         baseDensity_.resize(n);
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) baseDensity_[i] = rho[i] + (offset ? offset[i] : Scalar(0));
+        warmStartVelocities(s, k, dt, invDt2);
         const auto stiffness = [&](std::size_t i, Scalar predicted) {
             rate_[i] = predicted;
             kappaOverRho_[i] = std::max(predicted - rho0_, Scalar(0)) * alphaOverRho[i] * invDt2;
@@ -215,6 +222,12 @@ public:
             // κ_v (the velocities' compressing part) and the density solve's κ — p from κ alone
             // read a still column 34 % low
             p[i] = rho[i] * (k[i] + (divergenceSolve_ ? (*kappaV_)[i] : Scalar(0)));
+            // kept for the next warm start as the step's velocity change per unit of κ's
+            // gradient: κ_v Δt and κ Δt² (as SPlisHSPlasH), not κ, so a step of another Δt
+            // starts from the same velocity change (a κ carried over from a step 2.5× shorter
+            // applied 2.5× the push: the Colagrossi column's top shot up at 11 m/s while Δt grew)
+            k[i] *= dt * dt;
+            if (divergenceSolve_) (*kappaV_)[i] *= dt;
         }
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
     }
@@ -298,10 +311,12 @@ private:
     }
 
     // Applies warmStart × the last step's κ to velocity_ and keeps it as this step's start.
-    void warmStartVelocities(const Scene& s, std::vector<Scalar>& kappa, Scalar dt) {
+    // kappa holds the last step's κ Δt (divergence solve; perDt = 1/Δt) or κ Δt² (density solve;
+    // perDt = 1/Δt²): the warm start is warmStart × that over this step's Δt.
+    void warmStartVelocities(const Scene& s, std::vector<Scalar>& kappa, Scalar dt, Scalar perDt) {
         const std::size_t n = kappa.size();
         const auto& rho = s.fluid.density();
-        const Scalar w = warmStart_;
+        const Scalar w = warmStart_ * perDt;
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
             kappa[i] *= w;
