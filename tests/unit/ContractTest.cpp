@@ -329,7 +329,7 @@ INSTANTIATE_TEST_SUITE_P(EveryIntegrator, IntegratorContract, testing::ValuesIn(
 // wall's discretisation (wcsph 9–11 %, isobaric 10–11 %, iisph 7–8 %, and 10.4 % with iisph
 // converged to η = 10⁻⁵); pcisph's is closest (2–5 %). dfsph's p = ρκ next to a wall is about
 // twice the physical one (its header: the wall term applied once, as SPlisHSPlasH); pbf's and
-// relaxedPbf's p = −ρ0 λ/Δt² (MODELS.md §pbf) is far off (not yet understood: the physics
+// relaxedPbf's p = −ρ0 λ/Δt² (docs/MODELS.md §pbf) is far off (not yet understood: the physics
 // owner's), and pbf leaves particles 0.2 Δx beyond the wall's surface. To be tightened as they
 // are fixed.
 struct HydrostaticBounds {

@@ -93,7 +93,7 @@ TEST(IsobaricBlend, AlphaFallsContinuouslyFromTwoToZeroAndStaysInRange) {
                     << pi << " " << pj << ", delta " << delta;
             }
         // the paper's eq. 15 as printed, −(1 + 1/(4δ)) 𝒫² + 𝒫/δ + 2, exceeds 2 just above 𝒫 = 0,
-        // against its own constraint 0 <= α <= 2 (why MODELS.md restates it)
+        // against its own constraint 0 <= α <= 2 (why docs/MODELS.md §isobaric restates it)
         const double P = root / 2;
         EXPECT_GT(-a * P * P + b * P + 2, 2.0);
     }

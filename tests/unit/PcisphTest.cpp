@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Analytic dW/dr of the cubic spline (MODELS.md: σ(6q³ − 6q² + 1), 2σ(1 − q)³), written
+// Analytic dW/dr of the cubic spline (docs/MODELS.md §cubicSpline: σ(6q³ − 6q² + 1), 2σ(1 − q)³), written
 // out here independently of the plugin.
 double cubicSplineDW(double r, double h, int dim) {
     const double sigma = dim == 2 ? 40.0 / (7.0 * M_PI * h * h) : 8.0 / (M_PI * h * h * h);

@@ -1,5 +1,5 @@
 // vorticityConfinement — vorticity confinement for particle fluids (Macklin & Müller 2013,
-// eqs. 15–16; used by seed 002 §5 with any pressure solver; MODELS.md "Later models"):
+// eqs. 15–16; used by seed 002 §5 with any pressure solver; docs/MODELS.md §vorticityConfinement):
 //   ω_i = ∇×v ≈ Σ_j V_j (v_i − v_j) × ∇_i W_ij,          V_j = m/ρ_j
 //   η_i = ∇|ω|_i ≈ Σ_j V_j (|ω_j| − |ω_i|) ∇_i W_ij,     N_i = η_i/|η_i|
 //   a_i = ε (N_i × ω_i)

@@ -1,5 +1,5 @@
 // pereaCordero — the explicit multi-step Taylor integrator of Perea & Cordero (seed 000,
-// eqs. 26–27; MODELS.md "Integrators"):
+// eqs. 26–27; docs/MODELS.md §pereaCordero-integrator):
 //   u_{n+1} = u_n + Δt v_n + ½Δt² a_n + β2 Δt²/6 · D_n
 //   v_{n+1} = v_n + Δt a_n + β1 Δt/2 · D_n
 //   D_n = c0 a_n + c1 a_{n−1} + c2 a_{n−2}       (`history (c0 c1 c2);`)

@@ -1,6 +1,6 @@
 // cubicSpline — the M4 cubic B-spline (Monaghan & Lattanzio 1985), written on the support
 // radius h (q = r/h): W = σ(6q³ − 6q² + 1) for q ≤ ½, 2σ(1 − q)³ for ½ < q ≤ 1;
-// σ = 40/(7πh²) in 2D, 8/(πh³) in 3D. (MODELS.md, "Kernels")
+// σ = 40/(7πh²) in 2D, 8/(πh³) in 3D. (docs/MODELS.md §cubicSpline)
 #include "Kernel.hpp"
 #include "Plugin.hpp"
 

@@ -1,4 +1,4 @@
-// poly6Spiky — the kernel set of Müller, Charypar & Gross (2003) (MODELS.md "Kernels"), on the
+// poly6Spiky — the kernel set of Müller, Charypar & Gross (2003) (docs/MODELS.md §poly6Spiky), on the
 // support radius h, 2D and 3D, each use with its own shape (MullerKernels.hpp):
 //   W (density, interpolation)  poly6      σ (h² − r²)³
 //   dW/dr (pressure gradient)   spiky      −3σ (h − r)²   (non-zero at r = 0: keeps close

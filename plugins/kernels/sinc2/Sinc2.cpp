@@ -1,8 +1,8 @@
-// sinc2 — the squared-sinc kernel of Perea & Cordero (seed 000, eq. 19; MODELS.md "Kernels"),
+// sinc2 — the squared-sinc kernel of Perea & Cordero (seed 000, eq. 19; docs/MODELS.md §sinc2),
 // written on the support radius h (q = r/h, s = πq):
 //   W = A0 · sin²(s)/s² for q < 1, 0 beyond; W and dW/dr vanish at q = 1.
 // The paper prints A0 = 5.471870115/(πh³) = 1.7418/h³, which does not normalise the kernel.
-// We use the constants that make ∫W dV = 1 (MODELS.md):
+// We use the constants that make ∫W dV = 1 (docs/MODELS.md §sinc2):
 //   3D: A0 = π/(2h³)             (∫ 4πr² W dr = A0 · 2h³/π),
 //   2D: A0 = π/(Cin(2π) h²) = 1.2887774/h²   (∫ 2πr W dr = A0 · h² Cin(2π)/π,
 //       Cin(x) = ∫₀ˣ (1 − cos t)/t dt, Cin(2π) = 2.4376533930572244).

@@ -1,5 +1,5 @@
 // wendlandC2 — Wendland (1995) C² kernel on the support radius h (q = r/h):
-// W = σ(1 − q)⁴(1 + 4q); σ = 7/(πh²) in 2D, 21/(2πh³) in 3D. (MODELS.md, "Kernels")
+// W = σ(1 − q)⁴(1 + 4q); σ = 7/(πh²) in 2D, 21/(2πh³) in 3D. (docs/MODELS.md §wendlandC2)
 #include "Kernel.hpp"
 #include "Plugin.hpp"
 

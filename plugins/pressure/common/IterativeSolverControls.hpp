@@ -1,5 +1,5 @@
 // Tolerances of the iterative (incompressible) pressure solvers pcisph, pbf and relaxedPbf,
-// read from system/sphSolution (MODELS.md "Pressure terms"):
+// read from system/sphSolution (docs/MODELS.md §sphSolution):
 //
 //   pressure
 //   {

@@ -1,7 +1,7 @@
 // Kernel-gradient sums of a prototype particle with a full neighbourhood on the case's initial
 // lattice (spacing Δx, dimension 2 or 3): the particle at the origin, neighbours at (i, j, k)·Δx
 // with 0 < r < h. Used by PCISPH's pressure scaling δ (Solenthaler & Pajarola 2009, eq. 8;
-// MODELS.md "pcisph") and by the position-based solvers to make their relaxation parameters
+// docs/MODELS.md §pcisph) and by the position-based solvers to make their relaxation parameters
 // resolution-independent.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Position-based density solver shared by the pressure plugins `pbf` (Macklin & Müller 2013)
-// and `relaxedPbf` (Duan et al. 2019, seed 002); MODELS.md "pbf and relaxedPbf". The two
+// and `relaxedPbf` (Duan et al. 2019, seed 002); docs/MODELS.md §pbf, §relaxedPbf. The two
 // plugins differ only in which options they expose and in their defaults.
 //
 // One call, on the step's neighbour lists, with the step's Δt:

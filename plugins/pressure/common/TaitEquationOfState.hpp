@@ -1,4 +1,4 @@
-// Tait equation of state (Becker & Teschner 2007; MODELS.md "Equation of state"), shared by
+// Tait equation of state (Becker & Teschner 2007; docs/MODELS.md §tait), shared by
 // the weakly compressible pressure plugins: p = B((ρ/ρ0)^γ − 1), B = c0² ρ0 / γ.
 //
 // Dictionary keywords (read by read()): gamma (7), soundSpeed c0 [m/s] (default

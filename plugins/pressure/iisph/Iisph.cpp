@@ -1,6 +1,6 @@
 // iisph — implicit incompressible SPH (Ihmsen, Cornelis, Solenthaler, Horvath & Teschner 2014,
-// "Implicit Incompressible SPH", IEEE TVCG 20(3) 426–435, doi:10.1109/TVCG.2013.105; MODELS.md
-// "iisph"). The pressure that makes the density predicted for the end of the step ρ0 solves a
+// "Implicit Incompressible SPH", IEEE TVCG 20(3) 426–435, doi:10.1109/TVCG.2013.105;
+// docs/MODELS.md §iisph). The pressure that makes the density predicted for the end of the step ρ0 solves a
 // linear system (a discrete pressure Poisson equation), by relaxed Jacobi, on the step's
 // neighbour lists, linearised about the step's positions (as DFSPH: no re-search):
 //   v_adv = v + Δt a_nonp                                              (advection)

@@ -1,5 +1,5 @@
-// isobaric — the isobaric pressure term of Perea & Cordero (seed 000, eqs. 13–16; MODELS.md
-// "Pressure terms"), with summation density and the Tait equation of state of wcsph
+// isobaric — the isobaric pressure term of Perea & Cordero (seed 000, eqs. 13–16;
+// docs/MODELS.md §isobaric), with summation density and the Tait equation of state of wcsph
 // (TaitEquationOfState.hpp; the paper uses γ = 5.65).
 //
 //   ∇p_i = 1/(2ρ_i) Σ_j m_j P_p ∇_i W_ij,   P_p = α (p_j − p_i) + β ρ_i² (p_i/ρ_i² + p_j/ρ_j²),
@@ -8,7 +8,7 @@
 // (1/ρ_i) Σ m_j (p_j − p_i) ∇_i W_ij: a neighbourhood of uniform pressure (𝒫 = 0, α = 2) feels
 // no pressure force at all, even at a free surface. α = 2 at 𝒫 = 0 falls to 0 at 𝒫 ≈ 2δ, so
 // δ → 0 gives wcsph wherever pressures differ. The paper's eq. 15 as printed grows above 2 for
-// 𝒫 > 0; MODELS.md's restatement of its intent is implemented.
+// 𝒫 > 0; docs/MODELS.md §isobaric's restatement of its intent is implemented.
 // The α part is not pairwise antisymmetric (the pair's difference terms add instead of
 // cancelling), so this term does not conserve momentum exactly; the β part does.
 // Walls (not in the paper, which uses a collision response): a wall particle b stands in for

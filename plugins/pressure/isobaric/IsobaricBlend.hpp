@@ -1,9 +1,9 @@
 // The blend weights of the isobaric pressure term (Perea & Cordero, seed 000, eqs. 15–16;
-// MODELS.md "Pressure terms"), header-only so the unit tests can check them directly.
+// docs/MODELS.md §isobaric), header-only so the unit tests can check them directly.
 //
 // Relative pressure (eq. 16): 𝒫 = |p_i − p_j| / max(|p_i|, |p_j|), 𝒫 = 0 when both vanish
 // (𝒫 ∈ [0, 2]; > 1 only when the signs differ).
-// Weight of the difference form (eq. 15 as MODELS.md restates its intent):
+// Weight of the difference form (eq. 15 as docs/MODELS.md §isobaric restates its intent):
 //   α(𝒫) = (1 + 1/(4δ)) 𝒫² − 𝒫/δ + 2 for 𝒫 < 𝒫*, 0 beyond,
 // with 𝒫* the first root of the quadratic (≈ 2δ): α falls smoothly and monotonically from 2
 // at 𝒫 = 0 to 0 at 𝒫*, is continuous, and stays in [0, 2]. A real root in (0, 1] exists for

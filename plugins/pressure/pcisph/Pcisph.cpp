@@ -1,5 +1,5 @@
 // pcisph — predictive–corrective incompressible SPH (Solenthaler & Pajarola 2009, seed 003,
-// Algorithm 2 and eqs. 1–9; MODELS.md "pcisph").
+// Algorithm 2 and eqs. 1–9; docs/MODELS.md §pcisph).
 //
 // Inside one call, on the step's neighbour lists, with the step's Δt:
 //   p = w p_last (warmStart w, 0.5; the paper's p = 0 is w = 0), a_p from it; repeat:

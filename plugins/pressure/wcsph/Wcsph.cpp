@@ -1,5 +1,5 @@
-// wcsph — weakly compressible SPH (Monaghan 1994; Becker & Teschner 2007; MODELS.md
-// "Pressure terms"): summation density with wall contributions, Tait equation of state, and
+// wcsph — weakly compressible SPH (Monaghan 1994; Becker & Teschner 2007;
+// docs/MODELS.md §wcsph): summation or continuity density (§continuity) with wall contributions, Tait equation of state, and
 // the symmetric gradient a_i = −Σ_j m_j (p_i/ρ_i² + p_j/ρ_j²) ∇_i W_ij (momentum-conserving).
 //
 //   pressure { type wcsph; gamma 7; soundSpeed 20; clampNegativePressure yes; }

@@ -1,4 +1,4 @@
-// artificial — Monaghan (1992) artificial viscosity (MODELS.md "Viscosity"):
+// artificial — Monaghan (1992) artificial viscosity (docs/MODELS.md §artificial):
 // a_i = −Σ_j m_j Π_ij ∇_i W_ij,  Π_ij = −α c̄ μ_ij / ρ̄_ij for v_ij·r_ij < 0 (else 0),
 // μ_ij = h v_ij·r_ij / (r² + 0.01 h²), with h the support radius, c̄ the sound speed.
 // Walls act as particles of the fluid particle's density moving with the velocity the boundary

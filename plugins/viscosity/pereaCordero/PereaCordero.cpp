@@ -1,5 +1,5 @@
-// pereaCordero — the damped viscous term of Perea & Cordero (seed 000, eqs. 17–18; MODELS.md
-// "Viscosity"), with the kernel's laplacian (the core tabulates it; poly6Spiky gives Müller's
+// pereaCordero — the damped viscous term of Perea & Cordero (seed 000, eqs. 17–18;
+// docs/MODELS.md §pereaCordero-viscosity), with the kernel's laplacian (the core tabulates it; poly6Spiky gives Müller's
 // viscosity kernel, sinc2 the paper's own):
 //   form paper       a_i = Σ_j m_j (μ_j v_j/ρ_j² + μ_i v_i/ρ_i²) ∇²W_ij Γ_ij       (eq. 17 / ρ_i)
 //   form difference  a_i = Σ_j m_j ½ (μ_j/ρ_j² + μ_i/ρ_i²) (v_j − v_i) ∇²W_ij Γ_ij  (default)
