@@ -27,6 +27,9 @@ public:
     virtual void restarted(Scene&) {}
     virtual void step(Scene& scene, Scalar dt, const Evaluate& evaluate) = 0;
     virtual bool applies(ResultKind kind) const { return kind == ResultKind::acceleration; }
+    // The global order of accuracy for smooth forces: the error at a fixed time shrinks as
+    // Δt^order (the contract tests measure it on a harmonic oscillator). 0: inconsistent.
+    virtual int order() const { return 1; }
 };
 
 // The integrators that take the accelerations evaluated at the end of one step as the next

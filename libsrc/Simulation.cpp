@@ -124,13 +124,16 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
         // it acts on a density the integrator advances (continuity), never on a summed one
         const bool integrated = std::any_of(scene_.integratedFields.begin(), scene_.integratedFields.end(),
                                             [&](const IntegratedField& f) { return f.value == &scene_.fluid.density(); });
-        if (!integrated)
-            throw InputError(schemes.subDict("densityDiffusion").where(),
-                             "densityDiffusion acts on a density integrated in time: give the pressure model "
-                             "'density continuity;' (wcsph, isobaric), or leave densityDiffusion out",
-                             "densityDiffusion");
-        densityDiffusion_->initialise(scene_);
-        scene_.densityDiffusion = densityDiffusion_.get();
+        if (integrated) {
+            densityDiffusion_->initialise(scene_);
+            scene_.densityDiffusion = densityDiffusion_.get();
+        } else {
+            // a tutorial's one-word swap of the pressure solver keeps its densityDiffusion entry
+            log::warning("densityDiffusion " + schemes.subDict("densityDiffusion").get<std::string>("type") +
+                         " is not used: the pressure model sums its density from the positions; the term acts "
+                         "on a density integrated in time (wcsph or isobaric with 'density continuity;')");
+            densityDiffusion_.reset();
+        }
     }
     if (shifting_) {
         scene_.shiftingVelocity = &scene_.fluid.addVector("shiftingVelocity", {false, true});

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -41,6 +42,21 @@ std::string readFile(const std::filesystem::path& file) {
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
+}
+
+double radialIntegral(const std::function<double(double)>& W, double h, int dim) {
+    static const double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
+    static const double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891, 0.2369268850561891};
+    const int n = 4096;
+    const double dr = h / n;
+    double sum = 0;
+    for (int i = 0; i < n; ++i)
+        for (int g = 0; g < 5; ++g) {
+            const double r = (i + 0.5) * dr + 0.5 * dr * x[g];
+            const double shell = dim == 2 ? 2 * std::numbers::pi * r : 4 * std::numbers::pi * r * r;
+            sum += w[g] * 0.5 * dr * W(r) * shell;
+        }
+    return sum;
 }
 
 } // namespace spindrift::test

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ private:
 };
 
 std::string readFile(const std::filesystem::path& file);
+
+// ∫ W dV of a radial function W(r) over [0, h] in 'dim' dimensions: Gauss–Legendre (5 points)
+// on 4096 equal intervals, whose nodes include r = h/2 (where piecewise kernels change formula).
+double radialIntegral(const std::function<double(double)>& W, double h, int dim);
 
 } // namespace spindrift::test
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end checks of the incompressible pressure solvers (pcisph, pbf, relaxedPbf, dfsph) through
+# End-to-end checks of the incompressible pressure solvers (pcisph, pbf, relaxedPbf, dfsph, iisph) through
 # the real binary:
 #   - the damBreak2D and damBreak3D tutorials swap solver by editing one word, and every
 #     alternative reads and sets up (-dryRun);
@@ -38,7 +38,7 @@ for tutorial in damBreak2D damBreak3D; do
 done
 
 # maxIterations reached: said on the step line and recorded
-for model in pcisph relaxedPbf; do
+for model in pcisph relaxedPbf iisph; do
     rm -rf "$work/tank"
     cloneCase "$tutorials/hydrostaticTank2D" "$work/tank"
     sed -i '/^pressure/,/^}/c\pressure\n{\n    type        '$model';\n}' "$work/tank/system/sphSchemes"

@@ -1,6 +1,7 @@
-// Kernels (plugins/kernels/*) and the KernelTable: normalisation, derivatives, compact support,
-// the table against the analytic kernel, and the lattice stability criteria of Hongbin & Xin
-// (2005) that Perea & Cordero use (seed 000, eqs. 20–25).
+// Kernels beyond the contract every kernel plugin meets (ContractTest.cpp: normalisation,
+// derivatives, compact support, the table against the analytic kernel): the three shapes of
+// poly6Spiky, and the lattice stability criteria of Hongbin & Xin (2005) that Perea & Cordero
+// use (seed 000, eqs. 20–25).
 #include "KernelTable.hpp"
 #include "TestSupport.hpp"
 #include "../../plugins/kernels/poly6Spiky/MullerKernels.hpp"
@@ -16,156 +17,6 @@ using namespace spindrift;
 
 namespace {
 
-struct KernelCase {
-    std::string name;
-    int dim;
-    bool gradientVanishesAtOrigin = true; // eq. 22 (false for the spiky gradient, by design)
-};
-
-void PrintTo(const KernelCase& c, std::ostream* os) { *os << c.name << " " << c.dim << "D"; }
-
-std::string caseName(const testing::TestParamInfo<KernelCase>& info) {
-    return info.param.name + std::to_string(info.param.dim) + "D";
-}
-
-// ∫ W dV over the support: Gauss–Legendre (5 points) on 4096 equal intervals of [0, h], whose
-// nodes include q = 1/2 (where piecewise kernels change formula).
-double integral(const std::function<double(double)>& W, double h, int dim) {
-    static const double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
-    static const double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891, 0.2369268850561891};
-    const int n = 4096;
-    const double dr = h / n;
-    double sum = 0;
-    for (int i = 0; i < n; ++i)
-        for (int g = 0; g < 5; ++g) {
-            const double r = (i + 0.5) * dr + 0.5 * dr * x[g];
-            const double shell = dim == 2 ? 2 * std::numbers::pi * r : 4 * std::numbers::pi * r * r;
-            sum += w[g] * 0.5 * dr * W(r) * shell;
-        }
-    return sum;
-}
-double integral(const Kernel& k) {
-    return integral([&](double r) { return double(k.W(r)); }, k.supportRadius(), k.dimension());
-}
-
-class KernelTest : public testing::TestWithParam<KernelCase> {
-protected:
-    std::unique_ptr<Kernel> make(double h = 0.026) {
-        auto physics = test::physicsFor(GetParam().dim, h / 2.6, 2.6);
-        return test::createModel<Kernel>("type " + GetParam().name + ";", physics);
-    }
-};
-
-TEST_P(KernelTest, IntegratesToOne) {
-    for (double h : {0.026, 1.0, 3.5}) {
-        auto k = make(h);
-        EXPECT_NEAR(integral(*k), 1.0, 1e-6) << "h = " << h;
-    }
-}
-
-TEST_P(KernelTest, VanishesAtAndBeyondSupport) {
-    auto k = make();
-    const double h = k->supportRadius();
-    EXPECT_NEAR(k->W(h), 0.0, 1e-12 * k->W(0));
-    EXPECT_EQ(k->W(1.01 * h), 0.0);
-    EXPECT_EQ(k->dWdr(1.01 * h), 0.0);
-    // W and dW/dr go continuously to zero at the support radius (every kernel here claims both)
-    double maxSlope = 0;
-    for (double q = 0; q < 1; q += 0.001) maxSlope = std::max(maxSlope, std::abs(double(k->dWdr(q * h))));
-    EXPECT_NEAR(k->W(h * (1 - 1e-7)), 0.0, 1e-6 * k->W(0));
-    EXPECT_NEAR(k->dWdr(h * (1 - 1e-7)), 0.0, 1e-6 * maxSlope);
-    if (GetParam().gradientVanishesAtOrigin)
-        EXPECT_NEAR(k->dWdr(0.0), 0.0, 1e-9 * std::abs(k->W(0)) / h) << "gradient must vanish at r = 0";
-    else // spiky: a finite repulsion at r -> 0 (its direction r_ij/r is undefined at r = 0, where gradW is 0)
-        EXPECT_LT(k->dWdr(0.0), -0.1 * maxSlope) << "this kernel documents a non-zero gradient at r = 0";
-    EXPECT_GT(k->W(0), 0.0);
-    for (double q = 0.05; q < 1; q += 0.05) EXPECT_LE(k->dWdr(q * h), 0.0) << "W must decrease, q = " << q;
-}
-
-TEST_P(KernelTest, GradientMatchesFiniteDifference) {
-    auto k = make();
-    if (!k->gradientIsDerivativeOfW()) GTEST_SKIP() << "gradient shape differs from W by design";
-    // float: the step (~∛eps h/2) that balances rounding of W against truncation (worst measured
-    // 4.8e-5), the difference taken over the arguments as rounded to Scalar
-    const double h = k->supportRadius(), e = test::tol(1e-6, 2e-3) * h;
-    double worst = 0, scale = 0;
-    for (double q = 0.01; q < 0.995; q += 0.0123) {
-        const double r = q * h;
-        const Scalar rp = r + e, rm = r - e;
-        const double fd = (k->W(rp) - k->W(rm)) / (double(rp) - double(rm));
-        worst = std::max(worst, std::abs(fd - k->dWdr(r)));
-        scale = std::max<double>(scale, std::abs(k->dWdr(r)));
-    }
-    EXPECT_LT(worst / scale, test::tol(1e-6, 1e-4));
-}
-
-TEST_P(KernelTest, LaplacianMatchesFiniteDifference) {
-    auto k = make();
-    if (!k->gradientIsDerivativeOfW()) GTEST_SKIP() << "laplacian shape differs from W by design";
-    // float: the step (~eps^(1/4) h/3) that balances rounding against truncation (worst measured
-    // 2.2e-4), and the three-point formula on the arguments as rounded to Scalar
-    const double h = k->supportRadius(), e = test::tol(1e-4, 7e-3) * h;
-    const int d = k->dimension();
-    double worst = 0, scale = 0;
-    for (double q = 0.02; q < 0.99; q += 0.0173) {
-        const Scalar r = q * h, rp = r + e, rm = r - e;
-        const double ep = double(rp) - r, em = r - double(rm);
-        const double second = 2 * ((k->W(rp) - k->W(r)) / ep - (k->W(r) - k->W(rm)) / em) / (ep + em);
-        const double lap = second + (d - 1) * k->dWdr(r) / r;
-        worst = std::max(worst, std::abs(lap - k->laplacian(r)));
-        scale = std::max<double>(scale, std::abs(k->laplacian(r)));
-    }
-    EXPECT_LT(worst / scale, test::tol(1e-5, 5e-4));
-}
-
-// The table reproduces W, dW/dr and ∇²W, and W and dW/dr from r², to 1e-6 relative to the
-// largest value of each (the relative error is taken against the maximum because W → 0 at
-// the support); in float to 1e-5 (~100 eps: the stored coefficients are rounded to float).
-TEST_P(KernelTest, TableMatchesAnalyticKernel) {
-    auto k = make();
-    KernelTable table(*k);
-    table.enableLaplacian();
-    const double h = k->supportRadius();
-    double errW = 0, errD = 0, errL = 0, maxW = 0, maxD = 0, maxL = 0, errWSq = 0, errDSq = 0;
-    for (int i = 0; i <= 100000; ++i) {
-        const double r = h * i / 100000.0 * 0.999999;
-        errW = std::max<double>(errW, std::abs(table.W(r) - k->W(r)));
-        errD = std::max<double>(errD, std::abs(table.dWdr(r) - k->dWdr(r)));
-        errL = std::max<double>(errL, std::abs(table.laplacian(r) - k->laplacian(r)));
-        maxW = std::max<double>(maxW, std::abs(k->W(r)));
-        maxD = std::max<double>(maxD, std::abs(k->dWdr(r)));
-        maxL = std::max<double>(maxL, std::abs(k->laplacian(r)));
-        // the squared-distance tables of the pair loops: W(r) and r · (dW/dr / r)
-        errWSq = std::max<double>(errWSq, std::abs(table.WSq(r * r) - k->W(r)));
-        // (at r = 0 the gradient is zero by definition, whatever dW/dr is there: the spiky kernel)
-        if (r > 0) errDSq = std::max<double>(errDSq, std::abs(table.gradFactorSq(r * r) * r - k->dWdr(r)));
-    }
-    EXPECT_LT(errW / maxW, test::tol(1e-6, 1e-5));
-    EXPECT_LT(errD / maxD, test::tol(1e-6, 1e-5));
-    EXPECT_LT(errL / maxL, test::tol(1e-6, 1e-5));
-    EXPECT_LT(errWSq / maxW, test::tol(1e-6, 1e-5));
-    EXPECT_LT(errDSq / maxD, test::tol(1e-6, 1e-5));
-    // zero at the support (in float, h·h·(1/ds) may round into the end of the last interval)
-    EXPECT_LE(std::abs(table.WSq(h * h)), test::tol(0, 1e-5) * maxW);
-    EXPECT_LE(std::abs(table.gradFactorSq(h * h) * h), test::tol(0, 1e-5) * maxD);
-    EXPECT_EQ(table.gradFactorSq(0), 0.0);
-    EXPECT_EQ(table.W(h), 0.0);
-    EXPECT_EQ(table.W(2 * h), 0.0);
-    EXPECT_DOUBLE_EQ(table.W0(), k->W(0));
-    // gradient direction: points from j to i times dW/dr (< 0): towards j
-    const Vec3 rij(0.3 * h, 0.1 * h, 0);
-    const Vec3 g = table.gradW(rij);
-    EXPECT_LT(g.dot(rij), 0.0);
-    EXPECT_EQ(table.gradW(Vec3::Zero()), Vec3::Zero());
-}
-
-INSTANTIATE_TEST_SUITE_P(Kernels, KernelTest,
-                         testing::Values(KernelCase{"cubicSpline", 2}, KernelCase{"cubicSpline", 3},
-                                         KernelCase{"wendlandC2", 2}, KernelCase{"wendlandC2", 3},
-                                         KernelCase{"sinc2", 2}, KernelCase{"sinc2", 3},
-                                         KernelCase{"poly6Spiky", 2, false}, KernelCase{"poly6Spiky", 3, false}),
-                         caseName);
-
 // poly6Spiky uses three shapes, each normalised on its own: hold each one's integral, gradient
 // and laplacian against its own W, and the plugin against the shapes it assembles.
 TEST(Poly6Spiky, EachShapeIsNormalisedWithDerivativesOfItsOwnW) {
@@ -174,9 +25,9 @@ TEST(Poly6Spiky, EachShapeIsNormalisedWithDerivativesOfItsOwnW) {
             const muller::Poly6 poly6(h, dim);
             const muller::Spiky spiky(h, dim);
             const muller::Viscosity visc(h, dim);
-            EXPECT_NEAR(integral([&](double r) { return poly6.W(r); }, h, dim), 1.0, 1e-6) << "poly6 " << dim << "D";
-            EXPECT_NEAR(integral([&](double r) { return spiky.W(r); }, h, dim), 1.0, 1e-6) << "spiky " << dim << "D";
-            EXPECT_NEAR(integral([&](double r) { return visc.W(r); }, h, dim), 1.0, 1e-6) << "viscosity " << dim << "D";
+            EXPECT_NEAR(test::radialIntegral([&](double r) { return poly6.W(r); }, h, dim), 1.0, 1e-6) << "poly6 " << dim << "D";
+            EXPECT_NEAR(test::radialIntegral([&](double r) { return spiky.W(r); }, h, dim), 1.0, 1e-6) << "spiky " << dim << "D";
+            EXPECT_NEAR(test::radialIntegral([&](double r) { return visc.W(r); }, h, dim), 1.0, 1e-6) << "viscosity " << dim << "D";
             // W(h) = 0 and W'(h) = 0 for the viscosity kernel (Müller's construction)
             EXPECT_NEAR(visc.W(h * (1 - 1e-9)), 0.0, 1e-9 * visc.W(0.5 * h));
             EXPECT_NEAR(visc.dWdr(h * (1 - 1e-9)), 0.0, 1e-9 * std::abs(visc.dWdr(0.5 * h)));
@@ -215,6 +66,9 @@ TEST(Poly6Spiky, EachShapeIsNormalisedWithDerivativesOfItsOwnW) {
             EXPECT_SCALAR_EQ(k->dWdr(r), spiky.dWdr(r));
             EXPECT_SCALAR_EQ(k->laplacian(r), visc.laplacian(r));
         }
+        // the spiky gradient: a finite repulsion as r -> 0 by design (its direction r_ij/r is
+        // undefined at r = 0, where the table's gradient is 0)
+        EXPECT_LT(k->dWdr(0.0), 0.5 * k->dWdr(0.5 * h)) << "a non-zero gradient at r = 0, steeper than at h/2";
     }
 }
 

@@ -63,7 +63,8 @@ TEST(Pcisph, DeltaMatchesHandComputationOn2DAnd3DLattices) {
         const double sumSquares = dim == 2 ? 4 * w1 * w1 + 4 * w2 * w2 : 6 * w1 * w1 + 12 * w2 * w2;
         // one correction from the first prediction: with v = 0 and no other force, x* = x, so
         // p_i = δ (ρ_i − ρ0)
-        auto p = sc.pressure("type pcisph;", "maxDensityError 0; minIterations 1; maxIterations 1;");
+        auto p = sc.pressure("type pcisph; warmStart 0;", // the paper: p starts at 0
+                              "maxDensityError 0; minIterations 1; maxIterations 1;");
         for (double dt : {1e-3, 5e-4}) {
             const double deltaHand = rho0 * rho0 / (2 * dt * dt * m * m * sumSquares);
             p->computeDensity(sc.s);

@@ -1,5 +1,6 @@
-// Pressure, viscosity and boundary plugins of the foundation (wcsph, artificial, laminar,
-// akinci) on small particle sets: conservation, consistency, wall behaviour.
+// Pressure, viscosity and boundary plugins of the foundation (wcsph, laminar, akinci) on small
+// particle sets: conservation, consistency, wall behaviour. (Every viscosity's momentum
+// conservation, dissipation and Galilean invariance: ContractTest.cpp.)
 #include "PairLoop.hpp"
 #include "TestSupport.hpp"
 
@@ -106,48 +107,6 @@ TEST(Wcsph, ClampNegativePressure) {
     q->computeDensity(sc.s);
     EXPECT_LT(*std::min_element(sc.s.fluid.pressure().begin(), sc.s.fluid.pressure().end()), 0.0);
 }
-
-class ViscosityTest : public testing::TestWithParam<std::string> {};
-
-TEST_P(ViscosityTest, ConservesMomentumAndDissipatesEnergy) {
-    for (int dim : {2, 3}) {
-        TestScene sc(dim);
-        sc.block(dim == 2 ? 16 : 8, 0.1, 1.0);
-        sc.s.physics.nu = 1e-3;
-        sc.s.constants.soundSpeed = 20;
-        auto p = test::createModel<PressureModel>("type wcsph; soundSpeed 20;", sc.s.physics);
-        p->computeDensity(sc.s);
-        auto v = test::createModel<ViscosityModel>("type " + GetParam() + ";", sc.s.physics);
-        v->initialise(sc.s);
-        for (auto& a : sc.s.fluid.acceleration()) a.setZero();
-        v->addAcceleration(sc.s, 1e-4);
-        EXPECT_GT(sc.forceScale(), 0.0);
-        // float: the round-off of ~30-term pair sums
-        EXPECT_LT(sc.totalForce().norm(), test::tol(1e-12, 32 * test::eps) * sc.forceScale()) << dim << "D";
-        // dissipative: d/dt of kinetic energy = Σ m v·a < 0
-        double power = 0;
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i)
-            power += sc.s.fluid.velocity()[i].dot(sc.s.fluid.acceleration()[i]);
-        EXPECT_LT(power, 0.0);
-    }
-}
-
-TEST_P(ViscosityTest, UniformTranslationFeelsNoForce) {
-    TestScene sc(2);
-    sc.block(12, 0.1, 0.0);
-    for (auto& v : sc.s.fluid.velocity()) v = Vec3(1.5, -0.5, 0);
-    sc.s.physics.nu = 1e-3;
-    sc.s.constants.soundSpeed = 20;
-    auto p = test::createModel<PressureModel>("type wcsph; soundSpeed 20;", sc.s.physics);
-    p->computeDensity(sc.s);
-    auto v = test::createModel<ViscosityModel>("type " + GetParam() + ";", sc.s.physics);
-    v->initialise(sc.s);
-    for (auto& a : sc.s.fluid.acceleration()) a.setZero();
-    v->addAcceleration(sc.s, 1e-4);
-    EXPECT_EQ(sc.forceScale(), 0.0);
-}
-
-INSTANTIATE_TEST_SUITE_P(Models, ViscosityTest, testing::Values("artificial", "laminar"));
 
 TEST(Laminar, RequiresAViscosity) {
     auto physics = test::physicsFor(2);

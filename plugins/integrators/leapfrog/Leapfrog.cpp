@@ -12,6 +12,7 @@ using namespace spindrift;
 class Leapfrog final : public CarriedAccelerationIntegrator {
 public:
     explicit Leapfrog(const ModelContext&) {}
+    int order() const override { return 2; }
 
     void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
         startStep(s, evaluate);

@@ -47,6 +47,13 @@ public:
         }
     }
 
+    // second order with β1 = 1 (β2 enters the position's third-order term only), first with the
+    // paper's β1, none with a history that does not vanish for a constant acceleration
+    int order() const override {
+        if (std::abs(c_[0] + c_[1] + c_[2]) > 1e-12) return 0;
+        return beta1_ == 1 ? 2 : 1;
+    }
+
     void initialise(Scene& s) override {
         // allocated only when this integrator is chosen; needed for an exact restart
         s.fluid.addVector("accelerationOld1", {false, true});

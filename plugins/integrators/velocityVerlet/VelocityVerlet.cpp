@@ -16,6 +16,7 @@ using namespace spindrift;
 class VelocityVerlet final : public CarriedAccelerationIntegrator {
 public:
     explicit VelocityVerlet(const ModelContext&) {}
+    int order() const override { return 2; }
 
     void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
         startStep(s, evaluate);
