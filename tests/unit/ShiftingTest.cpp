@@ -141,7 +141,9 @@ TEST_P(ShiftingModels, ShiftChangesNoMomentum) {
     // the centre of mass
     EXPECT_LT(force.norm(), test::tol(1e-12, 1e-5) * std::max(forceScale, 1e-30)) << "scale " << forceScale;
     EXPECT_LT(transport.norm(), test::tol(1e-12, 1e-5) * transportScale);
-    if (GetParam() == transportVelocity) EXPECT_GT(forceScale, 0); // the extra stress acts
+    if (GetParam() == transportVelocity) {
+        EXPECT_GT(forceScale, 0); // the extra stress acts
+    }
 }
 
 TEST_P(ShiftingModels, UniformFlowIsNotShifted) {
@@ -239,8 +241,12 @@ TEST(DeltaPlus, FreeSurfaceParticlesAreNotPushedOut) {
             EXPECT_NEAR(sc.shift()[i].dot(normal[i]), 0, 1e-12 + 1e-9 * sc.shift()[i].norm());
         }
         if (zone[i] == 2) ++beside;
-        if (x.y() > surface - 0.5 * dx) EXPECT_EQ(zone[i], 1) << "the top row is on the surface";
-        if (x.y() < 6 * dx) EXPECT_EQ(zone[i], 0) << "the bottom rows (on the wall) are inside the fluid";
+        if (x.y() > surface - 0.5 * dx) {
+            EXPECT_EQ(zone[i], 1) << "the top row is on the surface";
+        }
+        if (x.y() < 6 * dx) {
+            EXPECT_EQ(zone[i], 0) << "the bottom rows (on the wall) are inside the fluid";
+        }
     }
     EXPECT_GE(surfaceParticles, sc.nx);
     EXPECT_GE(beside, sc.nx);
@@ -250,6 +256,32 @@ TEST(DeltaPlus, FreeSurfaceParticlesAreNotPushedOut) {
     EXPECT_LT(sc.top(), top0 + 0.05 * dx);
     std::cout << "deltaPlus with a free surface: top " << top0 / dx << " -> " << sc.top() / dx
               << " dx, disorder " << before << " -> " << sc.disorder() << "\n";
+}
+
+TEST(TransportVelocity, WarnsOfAFreeSurface) {
+    // the block with a free surface on top: a warning naming the surface particles and deltaPlus
+    SurfaceScene sc;
+    auto m = sc.model(transportVelocity);
+    testing::internal::CaptureStdout();
+    m->computeShift(sc.s, Scalar(sc.dt()));
+    m->computeShift(sc.s, Scalar(sc.dt()));
+    std::string out = testing::internal::GetCapturedStdout();
+    EXPECT_NE(out.find("--> Warning: shifting transportVelocity:"), std::string::npos) << out;
+    EXPECT_NE(out.find("a free surface"), std::string::npos) << out;
+    EXPECT_NE(out.find("deltaPlus"), std::string::npos) << out;
+    EXPECT_EQ(out.find("Warning"), out.rfind("Warning")) << "warned once, at the first evaluation";
+    // the same block on walls at both sides (a closed channel) and a disordered periodic box: no
+    // warning
+    ShiftScene channel(24, 12, false), box(20, 20, true);
+    channel.addWalls(3, true);
+    box.jitter(0.2);
+    for (ShiftScene* scene : {&channel, &box}) {
+        auto quiet = scene->model(transportVelocity);
+        testing::internal::CaptureStdout();
+        quiet->computeShift(scene->s, Scalar(scene->dt()));
+        out = testing::internal::GetCapturedStdout();
+        EXPECT_EQ(out.find("Warning"), std::string::npos) << out;
+    }
 }
 
 TEST(DeltaPlus, ShiftIsCapped) {
@@ -284,8 +316,11 @@ TEST(Laminar, LatticeCorrectionMakesTheLaplacianOfAQuadraticFieldExact) {
             }
             std::cout << "laminar, support " << support << " dx, latticeCorrection " << corrected
                       << ": largest relative error of nu lap v " << worst << "\n";
-            if (corrected) EXPECT_LT(worst, test::tol(1e-9, 1e-4));
-            else EXPECT_GT(worst, 0.03); // the plain sum: 8 % (2.6 dx) and 5.5 % (4 dx) too weak
+            if (corrected) {
+                EXPECT_LT(worst, test::tol(1e-9, 1e-4));
+            } else {
+                EXPECT_GT(worst, 0.03);
+            } // the plain sum: 8 % (2.6 dx) and 5.5 % (4 dx) too weak
         }
     }
 }
