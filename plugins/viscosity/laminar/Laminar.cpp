@@ -6,10 +6,11 @@
 // plates do not slip); wallFactor 0 = free slip. Pairwise antisymmetric among fluid particles.
 // latticeCorrection (yes): the sum is divided by its value for a quadratic velocity field on the
 // initial lattice, Λ = Σ_k V0 (−W'(r_k)) r_k x_k²/(r_k² + 0.01h²) over the lattice offsets k
-// (V0 = m/ρ0), as the particle mass makes summation density exact there: the lattice sum of
-// the second moment and the 0.01h² make the plain sum 3.7–8 % too weak at a support of 2.6Δx
-// (Λ = 0.92 for Wendland C2) and 5.5 % at 4Δx, a viscosity that much too low (a Poiseuille flow
-// 8 % too fast at steady state, a Taylor–Green vortex decaying 4 % too slowly by t = 1).
+// (V0 = m/ρ0), as the particle mass makes summation density exact there. The 0.01h² (h the
+// support radius) alone makes the sum 5.8 % too weak (the continuum value, any kernel width:
+// Λ = 0.942 for Wendland C2), the lattice's second moment adds −2.1 % at a support of 2.6Δx
+// (Λ = 0.921) and +0.3 % at 4Δx (Λ = 0.945): a viscosity that much too low (a Poiseuille flow
+// 8 % too fast at steady state on adami walls at L/40). docs/MODELS.md §laminar.
 //
 //   viscosity { type laminar; wallFactor 1; latticeCorrection yes; }
 #include "PairLoop.hpp"
