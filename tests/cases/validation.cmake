@@ -11,8 +11,8 @@ endif()
 foreach(spec
     "hydrostaticTank2D;bottomPressureError;2"   # % of rho0 g (H - z) at the bottom probe; measured 1.63 (adami, continuity; akinci lattice 1.85)
     "damBreak2D;frontRMS;0.15"                   # RMS of Z (T <= 3), a/20; measured 0.123 (adami, continuity, fourtakas; akinci lattice summation 0.098)
-    "poiseuille2D;velocityL2;0.25"               # relative L2, L/20, t <= 0.225 s; measured 0.18
-    "taylorGreen2D;velocityL2;0.4")              # relative L2, L/20, t <= 0.5; measured 0.29
+    "poiseuille2D;velocityL2;0.015"              # relative L2, L/20, t <= 0.225 s, adami walls; measured 0.0103
+    "taylorGreen2D;velocityL2;0.16")             # relative L2, L/20, t <= 0.5, deltaPlus shifting; measured 0.126
   list(GET spec 0 case)
   list(GET spec 1 figure)
   list(GET spec 2 bound)

@@ -1,12 +1,18 @@
 #!/usr/bin/env python3
 """Sets the Taylor-Green velocity u = -U cos(2 pi x/L) sin(2 pi y/L), v = U sin(2 pi x/L)
 cos(2 pi y/L) (ANALYTICAL.md; U = 1, L = the periodic length) on the particles of the newest
-time directory's fluid.vtp (written by 'spindrift -dryRun'), in place. Needs VTK: run it with
-pvpython (or a python3 with the vtk module).
+time directory's fluid.vtp (written by 'spindrift -dryRun'), in place, with its pressure
+p = -rho0 U^2/4 (cos(4 pi x/L) + cos(4 pi y/L)) and the density the Tait equation of state of
+system/sphSchemes gives it, rho0 (p/B + 1)^(1/gamma), B = c0^2 rho0/gamma: a density integrated in
+time (pressure 'density continuity;') starts in balance with the flow instead of sending out
+pressure waves of amplitude rho0 U^2/4 (a velocity error of U^2/(4 c0)); a summed density is
+computed from the positions anyway. Needs VTK: run it with pvpython (or a python3 with the vtk
+module).
 
     setTaylorGreen.py [U]
 """
 import os
+import re
 import sys
 
 import numpy as np
@@ -22,6 +28,25 @@ except ImportError as e:
     sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
 
 
+def equation_of_state():
+    """(soundSpeed, gamma) of the pressure dictionary of system/sphSchemes (gamma 7 if not given)."""
+    with open(os.path.join("system", "sphSchemes")) as fh:
+        text = re.sub(r"//.*", "", fh.read())
+    pressure = re.search(r"^pressure\s*\{([^}]*)\}", text, re.M).group(1)
+    c0 = re.search(r"\bsoundSpeed\s+([^;\s]+)\s*;", pressure)
+    gamma = re.search(r"\bgamma\s+([^;\s]+)\s*;", pressure)
+    if c0 is None:
+        sys.exit("setTaylorGreen: give the pressure model's soundSpeed in system/sphSchemes")
+    return float(c0.group(1)), float(gamma.group(1)) if gamma else 7.0
+
+
+def set_array(data, name, values):
+    array = numpy_to_vtk(np.ascontiguousarray(values), deep=1)
+    array.SetName(name)
+    data.GetPointData().RemoveArray(name)
+    data.GetPointData().AddArray(array)
+
+
 def main():
     U = float(sys.argv[1]) if len(sys.argv) > 1 else 1.0
     path = os.path.join(sv.written_times()[-1][1], "fluid.vtp")
@@ -33,10 +58,13 @@ def main():
     velocity = np.zeros_like(x)
     velocity[:, 0] = -U * np.cos(k * x[:, 0]) * np.sin(k * x[:, 1])
     velocity[:, 1] = U * np.sin(k * x[:, 0]) * np.cos(k * x[:, 1])
-    array = numpy_to_vtk(velocity, deep=1)
-    array.SetName("velocity")
-    data.GetPointData().RemoveArray("velocity")
-    data.GetPointData().AddArray(array)
+    set_array(data, "velocity", velocity)
+    rho0 = sv.fluid_properties()["rho0"]
+    c0, gamma = equation_of_state()
+    B = c0 ** 2 * rho0 / gamma
+    p = -rho0 * U ** 2 / 4 * (np.cos(2 * k * x[:, 0]) + np.cos(2 * k * x[:, 1]))
+    set_array(data, "pressure", p)
+    set_array(data, "density", rho0 * (p / B + 1) ** (1 / gamma))
     writer = vtkXMLPolyDataWriter()
     writer.SetFileName(path)
     writer.SetInputData(data)
@@ -45,7 +73,8 @@ def main():
     writer.SetHeaderTypeToUInt64()
     if writer.Write() != 1:
         sys.exit("cannot write " + path)
-    print("setTaylorGreen: U = %g, L = %g on %d particles of %s" % (U, L, len(x), path))
+    print("setTaylorGreen: U = %g, L = %g, pressure and density (c0 = %g, gamma = %g) on %d particles of %s"
+          % (U, L, c0, gamma, len(x), path))
 
 
 if __name__ == "__main__":
