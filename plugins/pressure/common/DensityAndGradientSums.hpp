@@ -46,4 +46,14 @@ struct CachedDivergenceTerm {
     void cached(const Vec3& ui, Index j, const Vec3& gradW, Sum& sum) const { sum += (ui - u[j]).dot(gradW); }
 };
 
+// Σ_j (s_i + s_j) ∇W_ij over the cached gradients, for any per-particle scalar s (p/ρ²: the
+// symmetric pressure gradient over m; dfsph's κ/ρ: its stiffness step).
+struct CachedSymmetricGradientTerm {
+    using Sum = Vec3;
+    using Particle = Scalar; // s_i
+    const Scalar* s;
+    Particle particle(std::size_t i) const { return s[i]; }
+    void cached(Scalar si, Index j, const Vec3& gradW, Sum& sum) const { sum += (si + s[j]) * gradW; }
+};
+
 } // namespace spindrift

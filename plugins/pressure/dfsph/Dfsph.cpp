@@ -54,15 +54,6 @@
 namespace {
 using namespace spindrift;
 
-// Σ_j (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij over the cached gradients.
-struct StiffnessTerm {
-    using Sum = Vec3;
-    using Particle = Scalar; // κ_i/ρ_i
-    const Scalar* kappaOverRho;
-    Particle particle(std::size_t i) const { return kappaOverRho[i]; }
-    void cached(Scalar ki, Index j, const Vec3& gradW, Sum& sum) const { sum += (ki + kappaOverRho[j]) * gradW; }
-};
-
 class Dfsph final : public PressureModel {
 public:
     explicit Dfsph(const ModelContext& c)
@@ -304,7 +295,7 @@ private:
         const auto& rho = s.fluid.density();
         const Vec3* g = wallGradient_->data();
         Scalar* total = kappa ? kappa->data() : nullptr;
-        forEachCachedPairSum(s, StiffnessTerm{kappaOverRho_.data()}, [&](std::size_t i, Scalar ki, const Vec3& dv) {
+        forEachCachedPairSum(s, CachedSymmetricGradientTerm{kappaOverRho_.data()}, [&](std::size_t i, Scalar ki, const Vec3& dv) {
             velocity_[i] -= dt * (m * dv + ki * g[i]);
             if (total) total[i] += ki * rho[i];
         });

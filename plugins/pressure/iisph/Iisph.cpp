@@ -92,15 +92,6 @@ struct AdvectionAndPressureTerm {
     }
 };
 
-// Σ_j (q_i + q_j) ∇W_ij, q = p/ρ².
-struct PressureTerm {
-    using Sum = Vec3;
-    using Particle = Scalar;
-    const Scalar* q;
-    Particle particle(std::size_t i) const { return q[i]; }
-    void cached(Scalar qi, Index j, const Vec3& gradW, Sum& sum) const { sum += (qi + q[j]) * gradW; }
-};
-
 class Iisph final : public PressureModel {
 public:
     explicit Iisph(const ModelContext& c)
@@ -210,7 +201,7 @@ public:
             p.swap(pNext_);
             q_.swap(qNext_);
             pushOfOwnPressureWalls();
-            forEachCachedPairSum(s, PressureTerm{q_.data()},
+            forEachCachedPairSum(s, CachedSymmetricGradientTerm{q_.data()},
                                  [&](std::size_t i, Scalar qi, const Vec3& push) { setPressureAcceleration(i, qi, push); });
             ++iterations;
         }
