@@ -72,6 +72,8 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     const Dictionary* functions = control.findDict("functions");
     readRunControls(control);
     checkWritable();
+    // one solver per case: a second one would write into (or remove) the first one's times
+    lock_ = std::make_unique<CaseLock>(case_.dir);
 
     scene_.physics = readPhysicalParameters(case_.fluidProperties);
     const auto& physics = scene_.physics;

@@ -77,6 +77,7 @@ private:
     void checkWritable() const;
 
     Case case_;
+    std::unique_ptr<CaseLock> lock_; // held from before the first write to the end (destroyed last but case_)
     Scene scene_;
     std::unique_ptr<TimeControl> time_;
     std::unique_ptr<CaseWriter> writer_;
