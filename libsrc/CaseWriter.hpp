@@ -14,6 +14,7 @@
 #include "ParticleSet.hpp"
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +64,7 @@ private:
     std::filesystem::path caseDir_;
     int precision_;
     std::vector<TimeEntry> times_; // complete times, sorted (scanned once, then kept up to date)
+    std::map<std::string, double> written_; // name -> time, of the times this writer wrote
     bool scanned_ = false;
 };
 

@@ -150,7 +150,7 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
                                                                  case_.dir, name));
     }
 
-    writer_ = std::make_unique<CaseWriter>(case_.dir, control.getOrDefault<int>("timePrecision", 6));
+    writer_ = std::make_unique<CaseWriter>(case_.dir, time_->timePrecision());
     restarted_ = time_->startFromLatest() && restartFromLatest();
     if (!restarted_) scene_.time = time_->startTime();
     time_->begin(scene_.time, lastDeltaT_);
@@ -314,7 +314,6 @@ void Simulation::readRunControls(const Dictionary& control) {
     runTimeModifiable_ = control.getOrDefault<bool>("runTimeModifiable", true);
     control.getOrDefault<std::string>("application", "spindrift");
     control.getOrDefault<std::string>("stopAt", "endTime");
-    control.getOrDefault<int>("timePrecision", 6);
     control.markUsed("libs");
     control.markUsed("functions");
     control.checkAllKeywordsUsed();

@@ -461,3 +461,21 @@ TEST(CaseWriter, CaseDirectoryCanBeMoved) {
     for (const auto& e : parsePvd(dir.path() / "b" / "a.pvd"))
         EXPECT_TRUE(fs::is_regular_file(dir.path() / "b" / e.file)) << e.file;
 }
+
+// Two different times of one name at the precision (issue 21: at timePrecision 1, 0.1 ended up
+// holding t = 0.12): the second is refused and the first kept.
+TEST(CaseWriter, ASecondTimeOfTheSameNameIsRefused) {
+    TempDir dir("spindrift-casewriter");
+    const fs::path caseDir = dir.path() / "c";
+    CaseWriter writer(caseDir, 1);
+    writer.write(0.1, randomSet(10, 1), {});
+    try {
+        writer.write(0.12, randomSet(20, 2), {});
+        FAIL() << "0.12 written over 0.1";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("both have the name '0.1' at timePrecision 1"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(readVtp(caseDir / "0.1" / "fluid.vtp").size(), 10u);
+    writer.write(0.1, randomSet(30, 3), {}); // the same time again (a signal's write) replaces it
+    EXPECT_EQ(readVtp(caseDir / "0.1" / "fluid.vtp").size(), 30u);
+}
