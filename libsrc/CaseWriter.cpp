@@ -482,6 +482,27 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
     writeCollection();
 }
 
+std::vector<std::string> CaseWriter::removeTimesWrittenAfter(double time) {
+    if (!scanned_) scan();
+    std::vector<std::string> removed;
+    for (const auto& [name, value] : written_)
+        if (value > time && timeName(time, precision_) != name) removed.push_back(name);
+    if (removed.empty()) return removed;
+    std::erase_if(times_, [&](const TimeEntry& e) {
+        return std::find(removed.begin(), removed.end(), e.name) != removed.end();
+    });
+    writeCollection();
+    for (const auto& name : removed) {
+        written_.erase(name);
+        const fs::path hidden = caseDir_ / ("." + name + ".removed");
+        std::error_code ec;
+        fs::remove_all(hidden, ec);
+        fs::rename(caseDir_ / name, hidden, ec);
+        if (!ec) fs::remove_all(hidden, ec);
+    }
+    return removed;
+}
+
 void CaseWriter::writeCollection() const {
     std::ostringstream s;
     s << "<?xml version=\"1.0\"?>\n"

@@ -621,8 +621,10 @@ RunSummary Simulation::run() {
         const double done = fractionDone();
         return formatDuration(wallSeconds() * (1 - done) / std::max(done, 1e-9));
     };
+    double lastWritten = restarted_ ? s.time : std::numeric_limits<double>::quiet_NaN();
     const auto writeAndLog = [&] {
         write();
+        lastWritten = s.time;
         std::ostringstream o;
         o << "Wrote time " << CaseWriter::timeName(s.time) << " (step " << s.step << ") at " << clockTime() << ", "
           << formatDuration(wallSeconds()) << " wall";
@@ -701,7 +703,16 @@ RunSummary Simulation::run() {
             lastDeltaT_ = good.lastDeltaT;
             if (twoBack) previous.valid = last.valid = false;
             keepPrevious = !twoBack;
+            // the times written after the good state hold the abandoned run: removed, so that
+            // neither ParaView nor 'startFrom latestTime' takes them for results
+            const auto removeAbandonedTimes = [&] {
+                const auto removed = writer_->removeTimesWrittenAfter(good.time);
+                std::string names;
+                for (const auto& n : removed) names += " " + n;
+                if (!removed.empty()) log::warning("removed the times written after " + CaseWriter::timeName(good.time) + ":" + names);
+            };
             if (reduceDeltaTOnBlowUp_ && retries < blowUpRetries_) {
+                removeAbandonedTimes();
                 ++retries;
                 stepsSinceRetry = 0;
                 dtCap = 0.5 * good.dtTaken;
@@ -712,7 +723,8 @@ RunSummary Simulation::run() {
                 setFatalSignalContext();
                 continue;
             }
-            write(); // the last good state, to look at in ParaView
+            write(); // the last good state, to look at in ParaView (and to restart from)
+            removeAbandonedTimes();
             throw std::runtime_error(blowUp + ". The last good state (time " + CaseWriter::timeName(good.time) +
                                      ") is written to " + (case_.dir / CaseWriter::timeName(good.time)).string() +
                                      "; try a smaller deltaT or maxCo, or onBlowUp reduceDeltaT;");
@@ -773,6 +785,9 @@ RunSummary Simulation::run() {
         }
     }
     log::clearProgress();
+    // the end state, also off the write schedule (else the run's last steps are lost and a
+    // restart goes back to the last write time)
+    if (!summary.interrupted && s.time != lastWritten) writeAndLog();
     for (auto& f : functions_) f->end(s);
     summary.steps = s.step - startStep;
     summary.endTime = s.time;
