@@ -152,6 +152,10 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     }
 
     const Dictionary& fluid = geometry.subDict("fluid");
+    // a run without fluid would overwrite the case's results with empty states
+    if (fluid.keywords().empty())
+        throw InputError(geometry.locationOf("fluid"), "'fluid' has no block: nothing to simulate (e.g. "
+                                                       "'water { type box; min (..); max (..); }')", "fluid");
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
         f.getWord("type", {"box"});

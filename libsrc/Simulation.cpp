@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -98,6 +99,8 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
         shifting_ = registry.create<ShiftingModel>(*d, physics, solutionFor("shifting"));
     if (const Dictionary* ns = schemes.findDict("neighbourSearch")) {
         sortEvery_ = ns->getOrDefault<int>("sortEvery", 10);
+        if (sortEvery_ < 0)
+            throw InputError(ns->locationOf("sortEvery"), "sortEvery must be 0 (never) or a number of steps", "sortEvery");
         ns->checkAllKeywordsUsed();
     }
 
@@ -150,6 +153,7 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
                                                                  case_.dir, name));
     }
 
+    checkWriteFields();
     writer_ = std::make_unique<CaseWriter>(case_.dir, time_->timePrecision());
     restarted_ = time_->startFromLatest() && restartFromLatest();
     if (!restarted_) scene_.time = time_->startTime();
@@ -299,6 +303,8 @@ void Simulation::readRunControls(const Dictionary& control) {
     writeFields_ = control.getOrDefault<std::vector<std::string>>("writeFields", {});
     reduceDeltaTOnBlowUp_ = control.getWordOrDefault("onBlowUp", {"stop", "reduceDeltaT"}, "stop") == "reduceDeltaT";
     blowUpRetries_ = control.getOrDefault<int>("blowUpRetries", 5);
+    if (blowUpRetries_ < 0)
+        throw InputError(control.locationOf("blowUpRetries"), "blowUpRetries must be 0 or more", "blowUpRetries");
     blowUpDensityError_ = control.getOrDefault<double>("blowUpDensityError", 0.2);
     blowUpSpeedSetting_ = control.found("blowUpSpeed") ? control.get<double>("blowUpSpeed") : 0.0; // 0: automatic
     blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
@@ -312,8 +318,10 @@ void Simulation::readRunControls(const Dictionary& control) {
                          "automatic interval)",
                          "logInterval");
     runTimeModifiable_ = control.getOrDefault<bool>("runTimeModifiable", true);
-    control.getOrDefault<std::string>("application", "spindrift");
-    control.getOrDefault<std::string>("stopAt", "endTime");
+    // a case written for another solver, or a stop this solver does not implement, is not run
+    // as if it were right
+    control.getWordOrDefault("application", {"spindrift"}, "spindrift");
+    control.getWordOrDefault("stopAt", {"endTime"}, "endTime");
     control.markUsed("libs");
     control.markUsed("functions");
     control.checkAllKeywordsUsed();
@@ -331,7 +339,14 @@ void Simulation::rereadControlDictIfChanged() {
     try {
         Dictionary control = Dictionary::fromFile(file);
         TimeControl updated(control);
-        readRunControls(control);
+        const std::vector<std::string> fields = writeFields_;
+        try {
+            readRunControls(control);
+            checkWriteFields();
+        } catch (const InputError&) {
+            writeFields_ = fields;
+            throw;
+        }
         const double previous = time_->previousDeltaT();
         *time_ = updated;
         time_->setPreviousDeltaT(previous);
@@ -355,6 +370,27 @@ void Simulation::checkWritable() const {
     fs::remove(probe, ec);
 }
 
+void Simulation::checkWriteFields() const {
+    std::vector<std::string> known{"id"};
+    const auto add = [&](const ParticleSet& set) {
+        for (const auto& f : set.scalarFields()) known.push_back(f->name);
+        for (const auto& f : set.vectorFields()) known.push_back(f->name);
+    };
+    add(scene_.fluid);
+    for (const auto& w : scene_.walls) add(w.particles);
+    for (const auto& name : writeFields_)
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            std::sort(known.begin(), known.end());
+            known.erase(std::unique(known.begin(), known.end()), known.end());
+            std::string list, closest = closestMatch(name, known);
+            for (const auto& k : known) list += (list.empty() ? "" : " ") + k;
+            throw InputError(case_.controlDict.locationOf("writeFields"),
+                             "unknown field '" + name + "' in writeFields; fields: (" + list + ")" +
+                                 (closest.empty() ? "" : "; did you mean '" + closest + "'?"),
+                             "writeFields");
+        }
+}
+
 std::string Simulation::timeFile() const {
     std::ostringstream s;
     s << std::setprecision(17) << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
@@ -365,6 +401,49 @@ std::string Simulation::timeFile() const {
     return s.str();
 }
 
+namespace {
+// Why a saved time cannot be restarted from (empty: it can): its fluid.vtp unreadable, empty or
+// holding a value that is not finite (a blow-up saved as if it were a state), its uniform/time
+// (exact time, step index, last Δt) missing, unreadable or of another time than its name.
+std::string unusableForRestart(const fs::path& dir, std::optional<ParticleSet>& saved,
+                               std::optional<Dictionary>& time) {
+    try {
+        saved.emplace(readVtp(dir / "fluid.vtp"));
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    if (saved->size() == 0) return "fluid.vtp holds no particles";
+    const auto notFinite = [&](const std::string& field, std::size_t i) {
+        return "fluid.vtp: " + field + " of particle " + std::to_string(saved->id()[i]) + " is not finite";
+    };
+    for (std::size_t i = 0; i < saved->size(); ++i)
+        if (!saved->position()[i].allFinite()) return notFinite("position", i);
+    for (const auto& f : saved->scalarFields())
+        for (std::size_t i = 0; i < f->data.size(); ++i)
+            if (!std::isfinite(f->data[i])) return notFinite(f->name, i);
+    for (const auto& f : saved->vectorFields())
+        for (std::size_t i = 0; i < f->data.size(); ++i)
+            if (!f->data[i].allFinite()) return notFinite(f->name, i);
+    const fs::path file = dir / "uniform/time";
+    if (!fs::exists(file)) return "uniform/time (its step index) is missing";
+    try {
+        time.emplace(Dictionary::fromFile(file));
+        const double value = time->get<double>("value");
+        time->get<long>("index");
+        time->get<double>("deltaT");
+        // the name at some precision (timePrecision may have changed since it was written)
+        bool named = false;
+        for (int digits = 1; digits <= 17 && std::isfinite(value); ++digits)
+            named = named || CaseWriter::timeName(value, digits) == dir.filename().string();
+        if (!named)
+            return "uniform/time holds the time " + std::to_string(value) + ", not " + dir.filename().string();
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return {};
+}
+} // namespace
+
 bool Simulation::restartFromLatest() {
     const auto times = writer_->existingTimes();
     if (times.empty()) {
@@ -372,30 +451,43 @@ bool Simulation::restartFromLatest() {
                      "; starting from startTime");
         return false;
     }
-    const auto& [time, name] = times.back();
-    const ParticleSet saved = readVtp(case_.dir / name / "fluid.vtp");
-    auto& fluid = scene_.fluid;
-    if (saved.size() == 0) throw InputError({(case_.dir / name / "fluid.vtp").string(), 0, 0}, "no particles to restart from");
-    fluid.resize(saved.size());
-    fluid.id() = saved.id();
-    for (const auto& f : saved.scalarFields())
-        if (auto* mine = fluid.findScalar(f->name)) *mine = f->data;
-    for (const auto& f : saved.vectorFields())
-        if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
-    fluid.position() = saved.position();
-    scene_.time = time;
-    lastDeltaT_ = 0;
-    // exact time, step index and last Δt (time directories written by older versions lack it)
-    const fs::path timeFilePath = case_.dir / name / "uniform/time";
-    if (fs::exists(timeFilePath)) {
-        const Dictionary t = Dictionary::fromFile(timeFilePath);
-        scene_.time = t.get<double>("value");
-        scene_.step = t.get<long>("index");
-        lastDeltaT_ = t.get<double>("deltaT");
+    // the newest usable time; a newer one that is not is skipped with a warning (never restarted
+    // from as if it were good, never with its step index reset)
+    std::optional<ParticleSet> saved;
+    std::optional<Dictionary> timeDict;
+    std::string name, firstProblem;
+    for (auto it = times.rbegin(); it != times.rend(); ++it) {
+        saved.reset();
+        timeDict.reset();
+        const std::string problem = unusableForRestart(case_.dir / it->second, saved, timeDict);
+        if (problem.empty()) {
+            name = it->second;
+            break;
+        }
+        if (firstProblem.empty()) firstProblem = "time " + it->second + ": " + problem;
+        log::warning("startFrom latestTime: cannot restart from time " + it->second + " (" + problem +
+                     "); trying the time before");
     }
+    if (name.empty())
+        throw InputError(case_.controlDict.locationOf("startFrom"),
+                         "no time directory to restart from (" + firstProblem +
+                             "); use 'startFrom startTime;' or repair the time",
+                         "startFrom");
+    auto& fluid = scene_.fluid;
+    fluid.resize(saved->size());
+    fluid.id() = saved->id();
+    for (const auto& f : saved->scalarFields())
+        if (auto* mine = fluid.findScalar(f->name)) *mine = f->data;
+    for (const auto& f : saved->vectorFields())
+        if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
+    fluid.position() = saved->position();
+    // exact time, step index and last Δt
+    scene_.time = timeDict->get<double>("value");
+    scene_.step = timeDict->get<long>("index");
+    lastDeltaT_ = timeDict->get<double>("deltaT");
     staticWallsWritten_ = true; // fixed walls were written at the first time
     log::info("Restarting from time " + name + " (step " + std::to_string(scene_.step) + ", " +
-              std::to_string(saved.size()) + " particles)");
+              std::to_string(saved->size()) + " particles)");
     return true;
 }
 

@@ -75,6 +75,9 @@ private:
     // tells that it is a density error (measured at the state before the last step).
     std::string findBlowUp(bool& densityOnly) const;
     void checkWritable() const;
+    // Every name in controlDict's writeFields is a field of the fluid or of a wall (a misspelt
+    // one would silently never be written).
+    void checkWriteFields() const;
 
     Case case_;
     std::unique_ptr<CaseLock> lock_; // held from before the first write to the end (destroyed last but case_)

@@ -256,4 +256,45 @@ TEST(EndState, WrittenOffTheWriteSchedule) {
     EXPECT_TRUE(fs::exists(steps / "0.002/fluid.vtp"));
 }
 
+// Restart input is validated (issue 21, item 7): the newest time with a value that is not
+// finite, or without uniform/time (its step index), is skipped with a warning for the time
+// before, whose step index is kept; with no usable time the error names the problem.
+TEST(RestartInput, FallsBackToThePreviousCompleteTime) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path caseDir = makeCase(tmp.path() / "case", "symplecticEuler", "wcsph", 0.01);
+    Simulation(caseDir).run();
+    editDictionary(caseDir / "system/controlDict", {{"startFrom", "latestTime"}, {"endTime", "0.015"}});
+    const long index005 = Dictionary::fromFile(caseDir / "0.005/uniform/time").get<long>("index");
+    ASSERT_GT(index005, 0);
+    const auto restartsFrom = [&](double time, long step) {
+        Simulation sim(caseDir);
+        EXPECT_DOUBLE_EQ(sim.scene().time, time);
+        EXPECT_EQ(sim.scene().step, step);
+    };
+
+    // a NaN position in the newest fluid.vtp
+    ParticleSet saved = readVtp(caseDir / "0.01/fluid.vtp");
+    const ParticleSet intact = readVtp(caseDir / "0.01/fluid.vtp");
+    saved.position()[7][1] = std::numeric_limits<Scalar>::quiet_NaN();
+    writeVtp(caseDir / "0.01/fluid.vtp", saved);
+    restartsFrom(0.005, index005);
+
+    // the newest without uniform/time: not restarted from with the step index reset
+    writeVtp(caseDir / "0.01/fluid.vtp", intact);
+    fs::remove(caseDir / "0.01/uniform/time");
+    restartsFrom(0.005, index005);
+
+    // no usable time at all: a clear error
+    for (const std::string name : {"0", "0.005"}) fs::remove(caseDir / name / "uniform/time");
+    try {
+        Simulation sim(caseDir);
+        FAIL() << "restarted without any usable time";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("no time directory to restart from (time 0.01: uniform/time (its step index) is missing)"),
+                  std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("(keyword 'startFrom')"), std::string::npos) << e.what();
+    }
+}
+
 } // namespace
