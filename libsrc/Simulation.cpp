@@ -61,7 +61,8 @@ Scalar latticeParticleMass(const KernelTable& kernel, const PhysicalParameters& 
     return Scalar(physics.rho0 / sum);
 }
 
-Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
+Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
+    : case_(Case::read(caseDir)), forceLargeCase_(forceLargeCase) {
     auto& registry = ModelRegistry::instance();
     const Dictionary& control = case_.controlDict;
     time_ = std::make_unique<TimeControl>(control);
@@ -104,6 +105,7 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
         ns->checkAllKeywordsUsed();
     }
 
+    checkParticleEstimate();
     buildParticles();
     resolveConstants();
     applyInitialPressure();
@@ -167,6 +169,57 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
 }
 
 Simulation::~Simulation() = default;
+
+namespace {
+// A /proc/meminfo entry in bytes (0 when unknown).
+double meminfoBytes(const std::string& key) {
+    std::ifstream in("/proc/meminfo");
+    for (std::string name; in >> name;) {
+        double kib = 0;
+        in >> kib;
+        if (name == key + ":") return kib * 1024;
+        in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    return 0;
+}
+
+std::string gib(double bytes) {
+    std::ostringstream s;
+    s << std::setprecision(3) << bytes / (1024.0 * 1024 * 1024) << " GiB";
+    return s.str();
+}
+} // namespace
+
+void Simulation::checkParticleEstimate() const {
+    const auto& physics = scene_.physics;
+    const ParticleEstimate e = estimateParticleCount(case_.geometry, physics.particleSpacing, physics.dimension);
+    const double count = e.count;
+    // bytes per particle: its fields, the sampling's copies and the neighbour lists (measured on
+    // the tutorials: about 0.6 kB in 2D, 2 kB in 3D; a lower estimate, so no case that fits is refused)
+    const double perParticle = physics.dimension == 3 ? 1500 : 500;
+    const double bytes = count * perParticle;
+    std::ostringstream estimate;
+    estimate << std::setprecision(3) << "about " << count << " particles at particleSpacing " << physics.particleSpacing
+             << " in " << physics.dimension << "D (" << e.largest << " in " << e.largestName << ")";
+    // the entry that makes the most particles (a huge box, `layers 1e9`), or the spacing itself
+    const std::string keyword = e.largestName.substr(e.largestName.find('.') + 1);
+    const SourceLocation where = e.largestAt;
+    const double available = meminfoBytes("MemAvailable");
+    if (available > 0 && bytes > available) {
+        const std::string message = "the geometry makes " + estimate.str() + ", needing about " + gib(bytes) +
+                                    "; this machine has " + gib(available) + " available (" +
+                                    gib(meminfoBytes("MemTotal")) + " in all)";
+        if (!forceLargeCase_)
+            throw InputError(where, message + ": use a larger particleSpacing or a smaller geometry (or -force)",
+                             keyword);
+        log::warning(message + "; running anyway (-force)");
+    }
+    if (count > double(std::numeric_limits<Index>::max()))
+        throw InputError(where, "the geometry makes " + estimate.str() + ", more than the " +
+                                    std::to_string(std::numeric_limits<Index>::max()) +
+                                    " a particle index can number; use a larger particleSpacing or a smaller geometry",
+                         keyword);
+}
 
 void Simulation::buildParticles() {
     const auto& physics = scene_.physics;

@@ -37,7 +37,8 @@ void stopAtOnceOnSignalsDuringSetUp();
 
 class Simulation {
 public:
-    explicit Simulation(const std::filesystem::path& caseDir);
+    // forceLargeCase (-force): run a case whose particle estimate exceeds the memory available
+    explicit Simulation(const std::filesystem::path& caseDir, bool forceLargeCase = false);
     ~Simulation();
 
     // Writes the initial state (unless restarting) and advances to endTime.
@@ -59,6 +60,9 @@ private:
     void readRunControls(const Dictionary& control);
     void rereadControlDictIfChanged();
     void buildParticles();
+    // Refuses, before anything is allocated, a geometry whose particles would not fit in the
+    // memory available (or not in the 32-bit particle index): the estimate and the memory named.
+    void checkParticleEstimate() const;
     void resolveConstants();
     // The sampled blocks' initial pressure (a hydrostatic start: p = ρ0 |g| depth) and the density
     // the pressure model's equation of state gives it; before the models initialise, so solvers
@@ -111,6 +115,7 @@ private:
     Periodicity periodic_;
     bool staticWallsWritten_ = false;
     bool restarted_ = false;
+    bool forceLargeCase_ = false;
     int writes_ = 0;
 };
 
