@@ -94,7 +94,7 @@ void TimeControl::checkWriteTimeNames(const Dictionary& d) const {
     double a2 = 0, b2 = 0;
     while (needed <= 17 && collision(startTime_, endTime_, spacing, needed, a2, b2)) ++needed;
     std::ostringstream s;
-    s << std::setprecision(17) << "the write times " << a << " and " << b << " would both be written as '"
+    s << std::setprecision(std::min(timePrecision_ + 6, 17)) << "the write times " << a << " and " << b << " would both be written as '"
       << CaseWriter::timeName(a, timePrecision_) << "' at timePrecision " << timePrecision_ << " (one overwriting the other); ";
     if (needed <= 17) s << "raise timePrecision to " << needed << (d.found("timePrecision") ? "" : " (the default is 6)");
     else s << "writeInterval is too short for times of this size";
