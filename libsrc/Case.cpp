@@ -1,8 +1,15 @@
 #include "Case.hpp"
 
+#include "Log.hpp"
+
+#include <cerrno>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -52,6 +59,64 @@ PhysicalParameters readPhysicalParameters(const Dictionary& d) {
     p.supportRadius = Scalar(factor) * p.particleSpacing;
     d.checkAllKeywordsUsed();
     return p;
+}
+
+namespace {
+std::string hostName() {
+    char host[256] = {};
+    if (gethostname(host, sizeof host - 1) != 0) return "unknown";
+    return host;
+}
+} // namespace
+
+CaseLock::CaseLock(const fs::path& caseDir) : file_(file(caseDir)) {
+    const std::string me = std::to_string(getpid()) + " " + hostName();
+    // the complete lock written under a name of our own, then linked: link() fails if the lock exists
+    fs::path mine = file_;
+    mine += "." + std::to_string(getpid());
+    {
+        std::ofstream out(mine, std::ios::trunc);
+        out << me << '\n';
+        if (!out.flush())
+            throw InputError({caseDir.string(), 0, 0}, "case directory '" + caseDir.string() +
+                                                           "' is not writable (results go there)");
+    }
+    std::error_code ec;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        if (::link(mine.c_str(), file_.c_str()) == 0) {
+            owner_ = true;
+            break;
+        }
+        const int error = errno;
+        if (error != EEXIST) {
+            fs::remove(mine, ec);
+            throw InputError({file_.string(), 0, 0}, std::string("cannot create the case lock: ") + std::strerror(error));
+        }
+        std::ifstream in(file_);
+        long pid = 0;
+        std::string host;
+        in >> pid >> host;
+        if (pid == getpid() && host == hostName()) break; // this process holds it already
+        const bool dead = pid > 0 && host == hostName() && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
+        if (!dead) {
+            fs::remove(mine, ec);
+            throw InputError({file_.string(), 0, 0},
+                             "the case is in use by spindrift pid " + (pid > 0 ? std::to_string(pid) : "?") +
+                                 " on host " + (host.empty() ? "?" : host) +
+                                 "; wait for it to finish or stop it (remove the lock only if that process is gone)");
+        }
+        log::warning("stale lock " + file_.string() + " of pid " + std::to_string(pid) +
+                     " (no longer running): taken over");
+        fs::remove(file_, ec);
+    }
+    fs::remove(mine, ec);
+    if (!owner_ && !fs::exists(file_, ec))
+        throw InputError({file_.string(), 0, 0}, "cannot take the case lock (another solver keeps replacing it)");
+}
+
+CaseLock::~CaseLock() {
+    std::error_code ec;
+    if (owner_) fs::remove(file_, ec);
 }
 
 bool isTimeName(const std::string& name) {

@@ -31,6 +31,26 @@ PhysicalParameters readPhysicalParameters(const Dictionary& fluidProperties);
 // plots, hidden files), as OpenFOAM's cloneCase. Tests, the bench utilities and ./Allrun copy
 // tutorials with it, so they never read another run's results.
 void copyCaseInput(const std::filesystem::path& source, const std::filesystem::path& target);
+// The case's lock: <case>/.spindrift.lock holding "pid host", so that two solvers never write
+// into one case (the second would overwrite or delete the first's time directories). Taken
+// with an atomic link() of a complete temporary file, so the lock file is never seen empty.
+// A lock whose pid is dead on this host is stale (a killed run): taken over with a warning.
+// A live one (or one from another host, which cannot be checked) is an InputError naming the
+// pid and host. A second lock by the same process (tests running two Simulations) shares it.
+// Removed by the destructor; a run killed by SIGKILL leaves a stale lock, taken over next time.
+class CaseLock {
+public:
+    explicit CaseLock(const std::filesystem::path& caseDir);
+    ~CaseLock();
+    CaseLock(const CaseLock&) = delete;
+    CaseLock& operator=(const CaseLock&) = delete;
+    static std::filesystem::path file(const std::filesystem::path& caseDir) { return caseDir / ".spindrift.lock"; }
+
+private:
+    std::filesystem::path file_;
+    bool owner_ = false; // created the file (a nested lock of the same process does not remove it)
+};
+
 // True for a name a run writes results under: a number (a time directory).
 bool isTimeName(const std::string& name);
 

@@ -401,6 +401,16 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
                        const std::vector<std::pair<std::string, std::string>>& extraFiles) {
     if (!scanned_) scan();
     const std::string name = timeName(time, precision_);
+    // two times of one name: the second would replace the first's results (the schedule is
+    // checked before the run; this catches what it cannot foresee, e.g. writeControl timeStep
+    // with an adjusted Δt)
+    if (const auto same = written_.find(name); same != written_.end() &&
+                                                   std::abs(same->second - time) > 1e-12 * std::max(1.0, std::abs(time))) {
+        std::ostringstream s;
+        s << std::setprecision(17) << "times " << same->second << " and " << time << " both have the name '" << name
+          << "' at timePrecision " << precision_ << ": not overwriting the first; raise timePrecision";
+        throw std::runtime_error(s.str());
+    }
     const fs::path finalDir = caseDir_ / name;
     const fs::path tmpDir = caseDir_ / ("." + name + ".tmp");
 
@@ -467,8 +477,30 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
                                            (a.value == b.value && a.name < b.name);
                                 });
     times_.insert(pos, entry);
+    written_[name] = time;
 
     writeCollection();
+}
+
+std::vector<std::string> CaseWriter::removeTimesWrittenAfter(double time) {
+    if (!scanned_) scan();
+    std::vector<std::string> removed;
+    for (const auto& [name, value] : written_)
+        if (value > time && timeName(time, precision_) != name) removed.push_back(name);
+    if (removed.empty()) return removed;
+    std::erase_if(times_, [&](const TimeEntry& e) {
+        return std::find(removed.begin(), removed.end(), e.name) != removed.end();
+    });
+    writeCollection();
+    for (const auto& name : removed) {
+        written_.erase(name);
+        const fs::path hidden = caseDir_ / ("." + name + ".removed");
+        std::error_code ec;
+        fs::remove_all(hidden, ec);
+        fs::rename(caseDir_ / name, hidden, ec);
+        if (!ec) fs::remove_all(hidden, ec);
+    }
+    return removed;
 }
 
 void CaseWriter::writeCollection() const {

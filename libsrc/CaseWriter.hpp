@@ -14,6 +14,7 @@
 #include "ParticleSet.hpp"
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +49,12 @@ public:
     // Rebuilds the .pvd from the complete time directories present (used at start-up).
     void rebuildCollection();
 
+    // Removes the times this writer wrote after 'time' (a blow-up's roll-back: they hold the
+    // abandoned states, and 'startFrom latestTime' would restart from them): the .pvd is
+    // rewritten without them first, then each directory is renamed to a hidden name and
+    // removed, so no reader sees a half-removed time. Returns their names.
+    std::vector<std::string> removeTimesWrittenAfter(double time);
+
     const std::filesystem::path& caseDir() const { return caseDir_; }
     std::filesystem::path collectionFile() const;
 
@@ -63,6 +70,7 @@ private:
     std::filesystem::path caseDir_;
     int precision_;
     std::vector<TimeEntry> times_; // complete times, sorted (scanned once, then kept up to date)
+    std::map<std::string, double> written_; // name -> time, of the times this writer wrote
     bool scanned_ = false;
 };
 

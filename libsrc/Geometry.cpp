@@ -53,6 +53,41 @@ int faceIndex(const std::string& face) {
 
 } // namespace
 
+ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, int dim) {
+    // lattice points in a box (in double: a count beyond any integer type must not overflow)
+    const auto points = [&](const Vec3& lo, const Vec3& hi) {
+        double n = 1;
+        for (int a = 0; a < dim; ++a) n *= std::max(0.0, std::round(double(hi[a] - lo[a]) / double(dx)));
+        return n;
+    };
+    ParticleEstimate e;
+    const auto add = [&](double n, const std::string& name, const SourceLocation& where) {
+        e.count += n;
+        if (n > e.largest) e = {e.count, n, name, where};
+    };
+    if (const Dictionary* walls = geometry.findDict("walls"))
+        for (const auto& name : walls->keywords()) {
+            const Dictionary& w = walls->subDict(name);
+            const Box box = readBox(w, dim);
+            const double layers = w.getOrDefault<double>("layers", 3);
+            Vec3 lo = box.min, hi = box.max;
+            for (int a = 0; a < dim; ++a) {
+                lo[a] -= Scalar(layers * dx);
+                hi[a] += Scalar(layers * dx);
+            }
+            add(w.getWordOrDefault("type", {"container", "box"}, "box") == "container"
+                    ? std::max(0.0, points(lo, hi) - points(box.min, box.max))
+                    : points(box.min, box.max),
+                "walls." + name, walls->locationOf(name));
+        }
+    if (const Dictionary* fluid = geometry.findDict("fluid"))
+        for (const auto& name : fluid->keywords()) {
+            const Box box = readBox(fluid->subDict(name), dim);
+            add(points(box.min, box.max), "fluid." + name, fluid->locationOf(name));
+        }
+    return e;
+}
+
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, const Vec3& gravity) {
     SampledGeometry out;
     std::vector<Box> solids;
@@ -152,6 +187,10 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     }
 
     const Dictionary& fluid = geometry.subDict("fluid");
+    // a run without fluid would overwrite the case's results with empty states
+    if (fluid.keywords().empty())
+        throw InputError(geometry.locationOf("fluid"), "'fluid' has no block: nothing to simulate (e.g. "
+                                                       "'water { type box; min (..); max (..); }')", "fluid");
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
         f.getWord("type", {"box"});

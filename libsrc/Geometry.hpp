@@ -41,6 +41,17 @@ struct SampledGeometry {
     Periodicity periodic;
 };
 
+// How many particles sampleGeometry would make, from the sizes of the blocks and walls alone (no
+// sampling, nothing allocated; an upper bound: solids and open faces are not subtracted). A
+// spacing far too fine for the domain (or `layers 1e9`) is seen before the memory runs out.
+struct ParticleEstimate {
+    double count = 0;         // all blocks and walls
+    double largest = 0;       // the largest block or wall's share
+    std::string largestName;  // e.g. "walls.tank"
+    SourceLocation largestAt; // its entry in constant/geometry
+};
+ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar spacing, int dimension);
+
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar spacing, int dimension,
                                const Vec3& gravity = Vec3::Zero());
 

@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -60,7 +61,8 @@ Scalar latticeParticleMass(const KernelTable& kernel, const PhysicalParameters& 
     return Scalar(physics.rho0 / sum);
 }
 
-Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
+Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
+    : case_(Case::read(caseDir)), forceLargeCase_(forceLargeCase) {
     auto& registry = ModelRegistry::instance();
     const Dictionary& control = case_.controlDict;
     time_ = std::make_unique<TimeControl>(control);
@@ -72,6 +74,8 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
     const Dictionary* functions = control.findDict("functions");
     readRunControls(control);
     checkWritable();
+    // one solver per case: a second one would write into (or remove) the first one's times
+    lock_ = std::make_unique<CaseLock>(case_.dir);
 
     scene_.physics = readPhysicalParameters(case_.fluidProperties);
     const auto& physics = scene_.physics;
@@ -96,9 +100,12 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
         shifting_ = registry.create<ShiftingModel>(*d, physics, solutionFor("shifting"));
     if (const Dictionary* ns = schemes.findDict("neighbourSearch")) {
         sortEvery_ = ns->getOrDefault<int>("sortEvery", 10);
+        if (sortEvery_ < 0)
+            throw InputError(ns->locationOf("sortEvery"), "sortEvery must be 0 (never) or a number of steps", "sortEvery");
         ns->checkAllKeywordsUsed();
     }
 
+    checkParticleEstimate();
     buildParticles();
     resolveConstants();
     applyInitialPressure();
@@ -148,7 +155,8 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
                                                                  case_.dir, name));
     }
 
-    writer_ = std::make_unique<CaseWriter>(case_.dir, control.getOrDefault<int>("timePrecision", 6));
+    checkWriteFields();
+    writer_ = std::make_unique<CaseWriter>(case_.dir, time_->timePrecision());
     restarted_ = time_->startFromLatest() && restartFromLatest();
     if (!restarted_) scene_.time = time_->startTime();
     time_->begin(scene_.time, lastDeltaT_);
@@ -161,6 +169,59 @@ Simulation::Simulation(const fs::path& caseDir) : case_(Case::read(caseDir)) {
 }
 
 Simulation::~Simulation() = default;
+
+namespace {
+// A /proc/meminfo entry in bytes (0 when unknown).
+double meminfoBytes(const std::string& key) {
+    std::ifstream in("/proc/meminfo");
+    for (std::string name; in >> name;) {
+        double kib = 0;
+        in >> kib;
+        if (name == key + ":") return kib * 1024;
+        in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    return 0;
+}
+
+std::string gib(double bytes) {
+    std::ostringstream s;
+    s << std::setprecision(3) << bytes / (1024.0 * 1024 * 1024) << " GiB";
+    return s.str();
+}
+} // namespace
+
+void Simulation::checkParticleEstimate() const {
+    const auto& physics = scene_.physics;
+    const ParticleEstimate e = estimateParticleCount(case_.geometry, physics.particleSpacing, physics.dimension);
+    const double count = e.count;
+    // bytes per particle: its fields, the sampling's copies and the neighbour lists; measured
+    // (peak memory less that of a small run): 0.6 kB running damBreak2D at 81,000 particles,
+    // 0.45 kB setting up damBreak3D (mostly wall particles). 400 B is below both, so a case that
+    // fits is not refused.
+    const double perParticle = 400;
+    const double bytes = count * perParticle;
+    std::ostringstream estimate;
+    estimate << std::setprecision(3) << "about " << count << " particles at particleSpacing " << physics.particleSpacing
+             << " in " << physics.dimension << "D (" << e.largest << " in " << e.largestName << ")";
+    // the entry that makes the most particles (a huge box, `layers 1e9`), or the spacing itself
+    const std::string keyword = e.largestName.substr(e.largestName.find('.') + 1);
+    const SourceLocation where = e.largestAt;
+    const double available = meminfoBytes("MemAvailable");
+    if (available > 0 && bytes > available) {
+        const std::string message = "the geometry makes " + estimate.str() + ", needing about " + gib(bytes) +
+                                    "; this machine has " + gib(available) + " available (" +
+                                    gib(meminfoBytes("MemTotal")) + " in all)";
+        if (!forceLargeCase_)
+            throw InputError(where, message + ": use a larger particleSpacing or a smaller geometry (or -force)",
+                             keyword);
+        log::warning(message + "; running anyway (-force)");
+    }
+    if (count > double(std::numeric_limits<Index>::max()))
+        throw InputError(where, "the geometry makes " + estimate.str() + ", more than the " +
+                                    std::to_string(std::numeric_limits<Index>::max()) +
+                                    " a particle index can number; use a larger particleSpacing or a smaller geometry",
+                         keyword);
+}
 
 void Simulation::buildParticles() {
     const auto& physics = scene_.physics;
@@ -297,6 +358,8 @@ void Simulation::readRunControls(const Dictionary& control) {
     writeFields_ = control.getOrDefault<std::vector<std::string>>("writeFields", {});
     reduceDeltaTOnBlowUp_ = control.getWordOrDefault("onBlowUp", {"stop", "reduceDeltaT"}, "stop") == "reduceDeltaT";
     blowUpRetries_ = control.getOrDefault<int>("blowUpRetries", 5);
+    if (blowUpRetries_ < 0)
+        throw InputError(control.locationOf("blowUpRetries"), "blowUpRetries must be 0 or more", "blowUpRetries");
     blowUpDensityError_ = control.getOrDefault<double>("blowUpDensityError", 0.2);
     blowUpSpeedSetting_ = control.found("blowUpSpeed") ? control.get<double>("blowUpSpeed") : 0.0; // 0: automatic
     blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
@@ -310,9 +373,10 @@ void Simulation::readRunControls(const Dictionary& control) {
                          "automatic interval)",
                          "logInterval");
     runTimeModifiable_ = control.getOrDefault<bool>("runTimeModifiable", true);
-    control.getOrDefault<std::string>("application", "spindrift");
-    control.getOrDefault<std::string>("stopAt", "endTime");
-    control.getOrDefault<int>("timePrecision", 6);
+    // a case written for another solver, or a stop this solver does not implement, is not run
+    // as if it were right
+    control.getWordOrDefault("application", {"spindrift"}, "spindrift");
+    control.getWordOrDefault("stopAt", {"endTime"}, "endTime");
     control.markUsed("libs");
     control.markUsed("functions");
     control.checkAllKeywordsUsed();
@@ -330,7 +394,14 @@ void Simulation::rereadControlDictIfChanged() {
     try {
         Dictionary control = Dictionary::fromFile(file);
         TimeControl updated(control);
-        readRunControls(control);
+        const std::vector<std::string> fields = writeFields_;
+        try {
+            readRunControls(control);
+            checkWriteFields();
+        } catch (const InputError&) {
+            writeFields_ = fields;
+            throw;
+        }
         const double previous = time_->previousDeltaT();
         *time_ = updated;
         time_->setPreviousDeltaT(previous);
@@ -354,6 +425,27 @@ void Simulation::checkWritable() const {
     fs::remove(probe, ec);
 }
 
+void Simulation::checkWriteFields() const {
+    std::vector<std::string> known{"id"};
+    const auto add = [&](const ParticleSet& set) {
+        for (const auto& f : set.scalarFields()) known.push_back(f->name);
+        for (const auto& f : set.vectorFields()) known.push_back(f->name);
+    };
+    add(scene_.fluid);
+    for (const auto& w : scene_.walls) add(w.particles);
+    for (const auto& name : writeFields_)
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            std::sort(known.begin(), known.end());
+            known.erase(std::unique(known.begin(), known.end()), known.end());
+            std::string list, closest = closestMatch(name, known);
+            for (const auto& k : known) list += (list.empty() ? "" : " ") + k;
+            throw InputError(case_.controlDict.locationOf("writeFields"),
+                             "unknown field '" + name + "' in writeFields; fields: (" + list + ")" +
+                                 (closest.empty() ? "" : "; did you mean '" + closest + "'?"),
+                             "writeFields");
+        }
+}
+
 std::string Simulation::timeFile() const {
     std::ostringstream s;
     s << std::setprecision(17) << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
@@ -364,6 +456,49 @@ std::string Simulation::timeFile() const {
     return s.str();
 }
 
+namespace {
+// Why a saved time cannot be restarted from (empty: it can): its fluid.vtp unreadable, empty or
+// holding a value that is not finite (a blow-up saved as if it were a state), its uniform/time
+// (exact time, step index, last Δt) missing, unreadable or of another time than its name.
+std::string unusableForRestart(const fs::path& dir, std::optional<ParticleSet>& saved,
+                               std::optional<Dictionary>& time) {
+    try {
+        saved.emplace(readVtp(dir / "fluid.vtp"));
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    if (saved->size() == 0) return "fluid.vtp holds no particles";
+    const auto notFinite = [&](const std::string& field, std::size_t i) {
+        return "fluid.vtp: " + field + " of particle " + std::to_string(saved->id()[i]) + " is not finite";
+    };
+    for (std::size_t i = 0; i < saved->size(); ++i)
+        if (!saved->position()[i].allFinite()) return notFinite("position", i);
+    for (const auto& f : saved->scalarFields())
+        for (std::size_t i = 0; i < f->data.size(); ++i)
+            if (!std::isfinite(f->data[i])) return notFinite(f->name, i);
+    for (const auto& f : saved->vectorFields())
+        for (std::size_t i = 0; i < f->data.size(); ++i)
+            if (!f->data[i].allFinite()) return notFinite(f->name, i);
+    const fs::path file = dir / "uniform/time";
+    if (!fs::exists(file)) return "uniform/time (its step index) is missing";
+    try {
+        time.emplace(Dictionary::fromFile(file));
+        const double value = time->get<double>("value");
+        time->get<long>("index");
+        time->get<double>("deltaT");
+        // the name at some precision (timePrecision may have changed since it was written)
+        bool named = false;
+        for (int digits = 1; digits <= 17 && std::isfinite(value); ++digits)
+            named = named || CaseWriter::timeName(value, digits) == dir.filename().string();
+        if (!named)
+            return "uniform/time holds the time " + std::to_string(value) + ", not " + dir.filename().string();
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return {};
+}
+} // namespace
+
 bool Simulation::restartFromLatest() {
     const auto times = writer_->existingTimes();
     if (times.empty()) {
@@ -371,30 +506,43 @@ bool Simulation::restartFromLatest() {
                      "; starting from startTime");
         return false;
     }
-    const auto& [time, name] = times.back();
-    const ParticleSet saved = readVtp(case_.dir / name / "fluid.vtp");
-    auto& fluid = scene_.fluid;
-    if (saved.size() == 0) throw InputError({(case_.dir / name / "fluid.vtp").string(), 0, 0}, "no particles to restart from");
-    fluid.resize(saved.size());
-    fluid.id() = saved.id();
-    for (const auto& f : saved.scalarFields())
-        if (auto* mine = fluid.findScalar(f->name)) *mine = f->data;
-    for (const auto& f : saved.vectorFields())
-        if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
-    fluid.position() = saved.position();
-    scene_.time = time;
-    lastDeltaT_ = 0;
-    // exact time, step index and last Δt (time directories written by older versions lack it)
-    const fs::path timeFilePath = case_.dir / name / "uniform/time";
-    if (fs::exists(timeFilePath)) {
-        const Dictionary t = Dictionary::fromFile(timeFilePath);
-        scene_.time = t.get<double>("value");
-        scene_.step = t.get<long>("index");
-        lastDeltaT_ = t.get<double>("deltaT");
+    // the newest usable time; a newer one that is not is skipped with a warning (never restarted
+    // from as if it were good, never with its step index reset)
+    std::optional<ParticleSet> saved;
+    std::optional<Dictionary> timeDict;
+    std::string name, firstProblem;
+    for (auto it = times.rbegin(); it != times.rend(); ++it) {
+        saved.reset();
+        timeDict.reset();
+        const std::string problem = unusableForRestart(case_.dir / it->second, saved, timeDict);
+        if (problem.empty()) {
+            name = it->second;
+            break;
+        }
+        if (firstProblem.empty()) firstProblem = "time " + it->second + ": " + problem;
+        log::warning("startFrom latestTime: cannot restart from time " + it->second + " (" + problem +
+                     "); trying the time before");
     }
+    if (name.empty())
+        throw InputError(case_.controlDict.locationOf("startFrom"),
+                         "no time directory to restart from (" + firstProblem +
+                             "); use 'startFrom startTime;' or repair the time",
+                         "startFrom");
+    auto& fluid = scene_.fluid;
+    fluid.resize(saved->size());
+    fluid.id() = saved->id();
+    for (const auto& f : saved->scalarFields())
+        if (auto* mine = fluid.findScalar(f->name)) *mine = f->data;
+    for (const auto& f : saved->vectorFields())
+        if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
+    fluid.position() = saved->position();
+    // exact time, step index and last Δt
+    scene_.time = timeDict->get<double>("value");
+    scene_.step = timeDict->get<long>("index");
+    lastDeltaT_ = timeDict->get<double>("deltaT");
     staticWallsWritten_ = true; // fixed walls were written at the first time
     log::info("Restarting from time " + name + " (step " + std::to_string(scene_.step) + ", " +
-              std::to_string(saved.size()) + " particles)");
+              std::to_string(saved->size()) + " particles)");
     return true;
 }
 
@@ -620,8 +768,10 @@ RunSummary Simulation::run() {
         const double done = fractionDone();
         return formatDuration(wallSeconds() * (1 - done) / std::max(done, 1e-9));
     };
+    double lastWritten = restarted_ ? s.time : std::numeric_limits<double>::quiet_NaN();
     const auto writeAndLog = [&] {
         write();
+        lastWritten = s.time;
         std::ostringstream o;
         o << "Wrote time " << CaseWriter::timeName(s.time) << " (step " << s.step << ") at " << clockTime() << ", "
           << formatDuration(wallSeconds()) << " wall";
@@ -700,7 +850,16 @@ RunSummary Simulation::run() {
             lastDeltaT_ = good.lastDeltaT;
             if (twoBack) previous.valid = last.valid = false;
             keepPrevious = !twoBack;
+            // the times written after the good state hold the abandoned run: removed, so that
+            // neither ParaView nor 'startFrom latestTime' takes them for results
+            const auto removeAbandonedTimes = [&] {
+                const auto removed = writer_->removeTimesWrittenAfter(good.time);
+                std::string names;
+                for (const auto& n : removed) names += " " + n;
+                if (!removed.empty()) log::warning("removed the times written after " + CaseWriter::timeName(good.time) + ":" + names);
+            };
             if (reduceDeltaTOnBlowUp_ && retries < blowUpRetries_) {
+                removeAbandonedTimes();
                 ++retries;
                 stepsSinceRetry = 0;
                 dtCap = 0.5 * good.dtTaken;
@@ -711,7 +870,8 @@ RunSummary Simulation::run() {
                 setFatalSignalContext();
                 continue;
             }
-            write(); // the last good state, to look at in ParaView
+            write(); // the last good state, to look at in ParaView (and to restart from)
+            removeAbandonedTimes();
             throw std::runtime_error(blowUp + ". The last good state (time " + CaseWriter::timeName(good.time) +
                                      ") is written to " + (case_.dir / CaseWriter::timeName(good.time)).string() +
                                      "; try a smaller deltaT or maxCo, or onBlowUp reduceDeltaT;");
@@ -772,6 +932,9 @@ RunSummary Simulation::run() {
         }
     }
     log::clearProgress();
+    // the end state, also off the write schedule (else the run's last steps are lost and a
+    // restart goes back to the last write time)
+    if (!summary.interrupted && s.time != lastWritten) writeAndLog();
     for (auto& f : functions_) f->end(s);
     summary.steps = s.step - startStep;
     summary.endTime = s.time;

@@ -37,7 +37,8 @@ void stopAtOnceOnSignalsDuringSetUp();
 
 class Simulation {
 public:
-    explicit Simulation(const std::filesystem::path& caseDir);
+    // forceLargeCase (-force): run a case whose particle estimate exceeds the memory available
+    explicit Simulation(const std::filesystem::path& caseDir, bool forceLargeCase = false);
     ~Simulation();
 
     // Writes the initial state (unless restarting) and advances to endTime.
@@ -59,6 +60,9 @@ private:
     void readRunControls(const Dictionary& control);
     void rereadControlDictIfChanged();
     void buildParticles();
+    // Refuses, before anything is allocated, a geometry whose particles would not fit in the
+    // memory available (or not in the 32-bit particle index): the estimate and the memory named.
+    void checkParticleEstimate() const;
     void resolveConstants();
     // The sampled blocks' initial pressure (a hydrostatic start: p = ρ0 |g| depth) and the density
     // the pressure model's equation of state gives it; before the models initialise, so solvers
@@ -75,8 +79,12 @@ private:
     // tells that it is a density error (measured at the state before the last step).
     std::string findBlowUp(bool& densityOnly) const;
     void checkWritable() const;
+    // Every name in controlDict's writeFields is a field of the fluid or of a wall (a misspelt
+    // one would silently never be written).
+    void checkWriteFields() const;
 
     Case case_;
+    std::unique_ptr<CaseLock> lock_; // held from before the first write to the end (destroyed last but case_)
     Scene scene_;
     std::unique_ptr<TimeControl> time_;
     std::unique_ptr<CaseWriter> writer_;
@@ -107,6 +115,7 @@ private:
     Periodicity periodic_;
     bool staticWallsWritten_ = false;
     bool restarted_ = false;
+    bool forceLargeCase_ = false;
     int writes_ = 0;
 };
 

@@ -1,8 +1,12 @@
 #include "TimeControl.hpp"
 
+#include "CaseWriter.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
+#include <vector>
 
 namespace spindrift {
 
@@ -23,6 +27,14 @@ void TimeControl::read(const Dictionary& d) {
     maxCo_ = d.getOrDefault<double>("maxCo", 0.2);
     if (!(maxCo_ > 0)) throw InputError(d.locationOf("maxCo"), "maxCo must be positive", "maxCo");
     maxDeltaT_ = d.getOrDefault<double>("maxDeltaT", adjustTimeStep_ ? 1.0 : deltaT_);
+    if (!(maxDeltaT_ > 0)) throw InputError(d.locationOf("maxDeltaT"), "maxDeltaT must be positive", "maxDeltaT");
+    // a name of 0 digits (or fewer) has no meaning; beyond 17 a double has no more digits
+    timePrecision_ = d.getOrDefault<int>("timePrecision", 6);
+    if (timePrecision_ < 1 || timePrecision_ > 17)
+        throw InputError(d.locationOf("timePrecision"),
+                         "timePrecision must be between 1 and 17 (significant digits of the time names), not " +
+                             std::to_string(timePrecision_),
+                         "timePrecision");
     const std::string wc = d.getWordOrDefault("writeControl", {"timeStep", "runTime", "adjustableRunTime"},
                                               "adjustableRunTime");
     writeControl_ = wc == "timeStep" ? WriteControl::TimeStep
@@ -35,6 +47,59 @@ void TimeControl::read(const Dictionary& d) {
         throw InputError(d.locationOf("writeInterval"),
                          "writeInterval must be a whole number of steps with writeControl timeStep", "writeInterval");
     timeTolerance_ = 1e-9 * std::max({std::abs(endTime_), std::abs(startTime_), 1e-3});
+    checkWriteTimeNames(d);
+}
+
+namespace {
+// The first pair of consecutive scheduled times with the same name at 'precision' (false: none).
+// The times a run writes: startTime, startTime + k·spacing, and endTime; names are monotonic in
+// the time, so a collision is between neighbours. Of a long schedule only the first and the
+// last 5·10^4 are looked at: the names of largest magnitude are at one of its ends, and a
+// spacing shorter than their last digit collides among them.
+bool collision(double start, double end, double spacing, int precision, double& a, double& b) {
+    const long long count = (long long)std::min(std::floor((end - start) / spacing + 1e-9), 1e18), half = 50000;
+    const auto check = [&](long long k0, long long k1, bool withEnd) {
+        std::string previous;
+        double previousTime = 0;
+        for (long long k = k0; k <= k1 + (withEnd ? 1 : 0); ++k) {
+            const double t = k <= k1 ? start + double(k) * spacing : end;
+            if (k > k1 && end - previousTime <= 1e-9 * spacing) break; // endTime on the schedule
+            std::string name = CaseWriter::timeName(t, precision);
+            if (k > k0 && name == previous) {
+                a = previousTime;
+                b = t;
+                return true;
+            }
+            previous = std::move(name);
+            previousTime = t;
+        }
+        return false;
+    };
+    if (count <= 2 * half) return check(0, count, true);
+    return check(0, half, false) || check(count - half, count, true);
+}
+} // namespace
+
+void TimeControl::checkWriteTimeNames(const Dictionary& d) const {
+    // the spacing of the writes; with timeStep control and a Δt that adjusts it is not known
+    // before the run (the writer refuses a second time of an existing name then)
+    double spacing = writeInterval_;
+    if (writeControl_ == WriteControl::TimeStep) {
+        if (adjustTimeStep_) return;
+        spacing = writeInterval_ * deltaT_;
+    }
+    double a = 0, b = 0;
+    if (!collision(startTime_, endTime_, spacing, timePrecision_, a, b)) return;
+    int needed = timePrecision_ + 1;
+    double a2 = 0, b2 = 0;
+    while (needed <= 17 && collision(startTime_, endTime_, spacing, needed, a2, b2)) ++needed;
+    std::ostringstream s;
+    s << std::setprecision(std::min(timePrecision_ + 6, 17)) << "the write times " << a << " and " << b << " would both be written as '"
+      << CaseWriter::timeName(a, timePrecision_) << "' at timePrecision " << timePrecision_ << " (one overwriting the other); ";
+    if (needed <= 17) s << "raise timePrecision to " << needed << (d.found("timePrecision") ? "" : " (the default is 6)");
+    else s << "writeInterval is too short for times of this size";
+    const char* keyword = d.found("timePrecision") ? "timePrecision" : "writeInterval";
+    throw InputError(d.locationOf(keyword), s.str(), keyword);
 }
 
 void TimeControl::begin(double time, double previousDeltaT) {

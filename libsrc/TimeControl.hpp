@@ -4,6 +4,7 @@
 //   startFrom      startTime | latestTime;      startTime 0;   endTime 0.3;
 //   deltaT         1e-4;                         adjustTimeStep yes;  maxCo 0.2;  maxDeltaT 1e-3;
 //   writeControl   timeStep | runTime | adjustableRunTime;         writeInterval 0.01;
+//   timePrecision  6;   // significant digits of the time directories' names (1 to 17)
 //
 // adjustableRunTime shortens steps so that they land exactly on write times (and endTime).
 #pragma once
@@ -31,6 +32,7 @@ public:
     double initialDeltaT() const { return deltaT_; }
     WriteControl writeControl() const { return writeControl_; }
     double writeInterval() const { return writeInterval_; }
+    int timePrecision() const { return timePrecision_; }
 
     // Sets the time the run starts from (startTime, or the latest time when restarting) and
     // the previous step's Δt (for the growth limit; 0 = the initial deltaT).
@@ -51,6 +53,11 @@ public:
     bool finished(double time) const { return time >= endTime_ - timeTolerance_; }
 
 private:
+    // Refuses write times whose names at timePrecision coincide (each would overwrite the one
+    // before: the results lost without a word), naming the timePrecision that separates them.
+    void checkWriteTimeNames(const Dictionary& controlDict) const;
+
+    int timePrecision_ = 6;
     double startTime_ = 0, endTime_ = 0, deltaT_ = 0, maxDeltaT_ = 0, maxCo_ = 0.2;
     double writeInterval_ = 0;
     bool startFromLatest_ = false, adjustTimeStep_ = false;

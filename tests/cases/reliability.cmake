@@ -8,3 +8,7 @@ add_test(NAME Reliability.SignalsKillAndRuntimeModification
 set_tests_properties(Reliability.BadInputsThroughTheSolver Reliability.SignalsKillAndRuntimeModification
   PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR}:${CMAKE_BINARY_DIR}/lib/testPlugins;OMP_NUM_THREADS=1"
   TIMEOUT 300)
+add_test(NAME Reliability.OneSolverPerCase
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/caseLock.sh $<TARGET_FILE:spindriftSolver> ${PROJECT_SOURCE_DIR}/tutorials)
+set_tests_properties(Reliability.OneSolverPerCase
+  PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR};OMP_NUM_THREADS=1" TIMEOUT 300)

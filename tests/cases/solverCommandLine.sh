@@ -12,7 +12,7 @@ help=$("$solver" -help)
 echo "$help"
 grep -q -- "^  -case <dir> " <<< "$help" || fail "-help does not describe -case <dir>"
 if grep -q -- "^  --" <<< "$help"; then fail "-help describes GNU-style --options"; fi
-for o in dryRun threads listModels version help; do
+for o in dryRun force threads listModels version help; do
     grep -q -- "^  -$o\b" <<< "$help" || fail "-help does not describe -$o"
 done
 [ "$("$solver" --help)" = "$help" ] || fail "--help differs from -help"
@@ -89,4 +89,14 @@ if "$solver" -case "$work/case" 2> "$work/err"; then fail "an unknown pressure t
 grep -q "Unknown pressure type 'wcsp'. Valid pressure types are: (.*wcsph.*)" "$work/err" \
     || fail "unknown type message: $(cat "$work/err")"
 grep -q "sphSchemes:[0-9]*:[0-9]*" "$work/err" || fail "the message names file:line:column: $(cat "$work/err")"
+# -force: past the memory estimate (refused without it), not past the particle index's range
+cloneCase "$tutorials/hydrostaticTank2D" "$work/huge"
+sed -i -E "s/^particleSpacing .*/particleSpacing 2e-6;/" "$work/huge/constant/fluidProperties"
+if "$solver" -case "$work/huge" > /dev/null 2> "$work/err"; then fail "a case of 1.5e10 particles ran"; fi
+grep -q "needing about .* GiB; this machine has .* GiB available (.* GiB in all).*(or -force)" "$work/err" \
+    || fail "memory estimate: $(cat "$work/err")"
+if "$solver" -case "$work/huge" -force > "$work/log" 2> "$work/err"; then fail "-force ran 1.5e10 particles"; fi
+grep -q "running anyway (-force)" "$work/log" || fail "-force: no warning: $(cat "$work/log")"
+grep -q "more than the 4294967295 a particle index can number" "$work/err" || fail "-force: $(cat "$work/err")"
+if ls "$work/huge" | grep -q '^[0-9]'; then fail "a refused case wrote a time"; fi
 echo "solver command line: OK"

@@ -461,3 +461,46 @@ TEST(CaseWriter, CaseDirectoryCanBeMoved) {
     for (const auto& e : parsePvd(dir.path() / "b" / "a.pvd"))
         EXPECT_TRUE(fs::is_regular_file(dir.path() / "b" / e.file)) << e.file;
 }
+
+// Two different times of one name at the precision (issue 21: at timePrecision 1, 0.1 ended up
+// holding t = 0.12): the second is refused and the first kept.
+TEST(CaseWriter, ASecondTimeOfTheSameNameIsRefused) {
+    TempDir dir("spindrift-casewriter");
+    const fs::path caseDir = dir.path() / "c";
+    CaseWriter writer(caseDir, 1);
+    writer.write(0.1, randomSet(10, 1), {});
+    try {
+        writer.write(0.12, randomSet(20, 2), {});
+        FAIL() << "0.12 written over 0.1";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("both have the name '0.1' at timePrecision 1"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(readVtp(caseDir / "0.1" / "fluid.vtp").size(), 10u);
+    writer.write(0.1, randomSet(30, 3), {}); // the same time again (a signal's write) replaces it
+    EXPECT_EQ(readVtp(caseDir / "0.1" / "fluid.vtp").size(), 30u);
+}
+
+// A blow-up's roll-back: the times this writer wrote after the good state go, from the .pvd
+// first; times of an earlier run and the good state itself stay.
+TEST(CaseWriter, RemovesTheTimesItWroteAfterAGivenTime) {
+    TempDir dir("spindrift-casewriter");
+    const fs::path caseDir = dir.path() / "c";
+    { CaseWriter(caseDir).write(5.0, randomSet(10, 1), {}); } // an earlier run's
+    CaseWriter writer(caseDir);
+    const ParticleSet walls = randomSet(5, 6, "boundary");
+    writer.write(0.0, randomSet(10, 1), {&walls});
+    writer.write(0.5, randomSet(10, 1), {});
+    writer.write(1.0, randomSet(10, 1), {});
+    writer.write(1.5, randomSet(10, 1), {});
+    EXPECT_EQ(writer.removeTimesWrittenAfter(0.5), (std::vector<std::string>{"1", "1.5"}));
+    EXPECT_TRUE(fs::exists(caseDir / "0.5"));
+    EXPECT_FALSE(fs::exists(caseDir / "1"));
+    EXPECT_FALSE(fs::exists(caseDir / "1.5"));
+    EXPECT_FALSE(fs::exists(caseDir / ".1.removed"));
+    EXPECT_TRUE(fs::exists(caseDir / "5")) << "not written by this writer";
+    std::vector<std::string> files;
+    for (const auto& e : parsePvd(writer.collectionFile())) files.push_back(e.file);
+    EXPECT_EQ(files, (std::vector<std::string>{"0/fluid.vtp", "0/boundary.vtp", "0.5/fluid.vtp", "0/boundary.vtp",
+                                               "5/fluid.vtp", "0/boundary.vtp"}));
+    EXPECT_TRUE(writer.removeTimesWrittenAfter(0.5).empty());
+}

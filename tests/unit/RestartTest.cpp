@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 #include <fstream>
+#include <limits>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -192,6 +193,40 @@ TEST(BlowUp, StopsNamingStepTimeAndParticleAndWritesTheLastGoodState) {
     }
 }
 
+// The times written after the last good state (a density blow-up rolls back two steps, past
+// a written one) are removed: the newest time is the good state, so 'startFrom latestTime'
+// restarts from it (issue 21, item 5).
+TEST(BlowUp, LeavesTheLastGoodStateAsTheNewestTime) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path caseDir = tooLargeTimeStep(tmp.path() / "case", "stop");
+    editDictionary(caseDir / "system/controlDict", {{"writeInterval", "3e-3"}}); // every step
+    std::string message;
+    try {
+        Simulation sim(caseDir);
+        sim.run();
+        FAIL() << "expected a blow-up";
+    } catch (const std::runtime_error& e) {
+        message = e.what();
+    }
+    const std::string marker = "The last good state (time ";
+    const auto at = message.find(marker);
+    ASSERT_NE(at, std::string::npos) << message;
+    const std::string good = message.substr(at + marker.size(), message.find(')', at) - at - marker.size());
+    const auto times = CaseWriter(caseDir).existingTimes();
+    ASSERT_FALSE(times.empty());
+    EXPECT_EQ(times.back().second, good) << message;
+    const std::string pvd = test::readFile(caseDir / "case.pvd");
+    EXPECT_NE(pvd.find("file=\"" + good + "/fluid.vtp\""), std::string::npos);
+    for (const auto& entry : fs::directory_iterator(caseDir))
+        EXPECT_EQ(entry.path().filename().string().find(".removed"), std::string::npos);
+    // the step index of the good state
+    const Dictionary t = Dictionary::fromFile(caseDir / good / "uniform/time");
+    const std::string stepText = "blow-up at step ";
+    const long blowUpStep = std::stol(message.substr(message.find(stepText) + stepText.size()));
+    EXPECT_LT(t.get<long>("index"), blowUpStep);
+}
+
 TEST(BlowUp, ReduceDeltaTRetriesAndFinishes) {
     log::setQuiet(true);
     test::TempDir tmp;
@@ -199,6 +234,67 @@ TEST(BlowUp, ReduceDeltaTRetriesAndFinishes) {
     const RunSummary r = sim.run();
     EXPECT_NEAR(r.endTime, 0.05, 1e-12);
     EXPECT_GT(r.steps, 17) << "some steps were taken with a reduced deltaT";
+}
+
+// The end state is written also when endTime is off the write schedule (issue 21, item 9).
+TEST(EndState, WrittenOffTheWriteSchedule) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path caseDir = makeCase(tmp.path() / "case", "symplecticEuler", "wcsph", 0.0075);
+    Simulation sim(caseDir);
+    const RunSummary r = sim.run();
+    std::vector<std::string> names;
+    for (const auto& [value, name] : CaseWriter(caseDir).existingTimes()) names.push_back(name);
+    EXPECT_EQ(names, (std::vector<std::string>{"0", "0.005", "0.0075"}));
+    EXPECT_EQ(Dictionary::fromFile(caseDir / "0.0075/uniform/time").get<long>("index"), r.steps);
+    EXPECT_NE(test::readFile(caseDir / "case.pvd").find("0.0075/fluid.vtp"), std::string::npos);
+
+    // writeControl timeStep: the last step, not a multiple of writeInterval, is written too
+    const fs::path steps = makeCase(tmp.path() / "steps", "symplecticEuler", "wcsph", 0.002);
+    editDictionary(steps / "system/controlDict", {{"writeControl", "timeStep"}, {"writeInterval", "1000"}});
+    Simulation(steps).run();
+    EXPECT_TRUE(fs::exists(steps / "0.002/fluid.vtp"));
+}
+
+// Restart input is validated (issue 21, item 7): the newest time with a value that is not
+// finite, or without uniform/time (its step index), is skipped with a warning for the time
+// before, whose step index is kept; with no usable time the error names the problem.
+TEST(RestartInput, FallsBackToThePreviousCompleteTime) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path caseDir = makeCase(tmp.path() / "case", "symplecticEuler", "wcsph", 0.01);
+    Simulation(caseDir).run();
+    editDictionary(caseDir / "system/controlDict", {{"startFrom", "latestTime"}, {"endTime", "0.015"}});
+    const long index005 = Dictionary::fromFile(caseDir / "0.005/uniform/time").get<long>("index");
+    ASSERT_GT(index005, 0);
+    const auto restartsFrom = [&](double time, long step) {
+        Simulation sim(caseDir);
+        EXPECT_DOUBLE_EQ(sim.scene().time, time);
+        EXPECT_EQ(sim.scene().step, step);
+    };
+
+    // a NaN position in the newest fluid.vtp
+    ParticleSet saved = readVtp(caseDir / "0.01/fluid.vtp");
+    const ParticleSet intact = readVtp(caseDir / "0.01/fluid.vtp");
+    saved.position()[7][1] = std::numeric_limits<Scalar>::quiet_NaN();
+    writeVtp(caseDir / "0.01/fluid.vtp", saved);
+    restartsFrom(0.005, index005);
+
+    // the newest without uniform/time: not restarted from with the step index reset
+    writeVtp(caseDir / "0.01/fluid.vtp", intact);
+    fs::remove(caseDir / "0.01/uniform/time");
+    restartsFrom(0.005, index005);
+
+    // no usable time at all: a clear error
+    for (const std::string name : {"0", "0.005"}) fs::remove(caseDir / name / "uniform/time");
+    try {
+        Simulation sim(caseDir);
+        FAIL() << "restarted without any usable time";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("no time directory to restart from (time 0.01: uniform/time (its step index) is missing)"),
+                  std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("(keyword 'startFrom')"), std::string::npos) << e.what();
+    }
 }
 
 } // namespace

@@ -1,6 +1,6 @@
 // spindrift — the SPH solver application.
 //
-//   spindrift [-case DIR] [-dryRun] [-threads N] [-listModels [kind]] [-version] [-help]
+//   spindrift [-case DIR] [-dryRun] [-force] [-threads N] [-listModels [kind]] [-version] [-help]
 //
 // Options are spelt as OpenFOAM's (-case DIR); the GNU spellings (--case DIR, --case=DIR) are
 // aliases. A misspelt option is refused with the closest one ("did you mean '-dryRun'?"),
@@ -42,6 +42,9 @@ std::vector<CommandLineOption> commandLineOptions() {
         {"dryRun", "",
          "read the case, build the particles, report counts, schemes and loaded plugins, write the start "
          "time, stop",
+         new po::untyped_value(true)},
+        {"force", "",
+         "run a case even when its particle estimate exceeds the memory available (refused otherwise)",
          new po::untyped_value(true)},
         {"threads", "<N>", "number of OpenMP threads (default: OMP_NUM_THREADS, else every core)",
          po::value<int>()},
@@ -223,7 +226,7 @@ int main(int argc, char** argv) {
         }
         threads = omp_get_max_threads();
 #endif
-        Simulation sim(vm["case"].as<std::string>());
+        Simulation sim(vm["case"].as<std::string>(), vm.count("force") > 0);
         banner(sim, threads);
         if (vm.count("dryRun")) {
             sim.writeInitialState();
