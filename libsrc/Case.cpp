@@ -73,7 +73,8 @@ CaseLock::CaseLock(const fs::path& caseDir) : file_(file(caseDir)) {
     const std::string me = std::to_string(getpid()) + " " + hostName();
     // the complete lock written under a name of our own, then linked: link() fails if the lock exists
     fs::path mine = file_;
-    mine += "." + std::to_string(getpid());
+    mine += '.';
+    mine += std::to_string(getpid());
     {
         std::ofstream out(mine, std::ios::trunc);
         out << me << '\n';
