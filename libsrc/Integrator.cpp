@@ -6,7 +6,6 @@ void advanceIntegratedFields(Scene& s, Scalar dt) {
     for (const IntegratedField& f : s.integratedFields) {
         auto& rate = *f.rate;
         f.computeRate(s, rate);
-        if (f.value == &s.fluid.density() && s.densityDiffusion) s.densityDiffusion->addRate(s, rate);
         auto& value = *f.value;
         forEachFluidParticle(s, [&](std::size_t i) { value[i] += dt * rate[i]; });
     }

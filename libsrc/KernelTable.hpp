@@ -63,6 +63,22 @@ public:
         return horner(gradSq_[k], s - Scalar(k));
     }
     Vec3 gradWSq(const Vec3& rij, Scalar r2) const { return rij * gradFactorSq(r2); }
+    // W and dW/dr / r from one lookup of r²'s interval (terms that sum both, e.g. a density
+    // and its gradient: half the index arithmetic of WSq and gradFactorSq called apart).
+    struct Values {
+        Scalar W, gradFactor;
+    };
+    Values valuesSq(Scalar r2) const {
+        const Scalar s = r2 * invDs_;
+        const int k = static_cast<int>(s);
+        if (k >= sqIntervals_ || r2 < Scalar(0)) return {0, 0};
+        if (k < nearIntervals_) {
+            const Scalar r = std::sqrt(r2);
+            return {W(r), r > Scalar(0) ? dWdr(r) / r : Scalar(0)};
+        }
+        const Scalar t = s - Scalar(k);
+        return {horner(wSq_[k], t), horner(gradSq_[k], t)};
+    }
 
     Scalar W0() const { return w0_; } // W(0), the self contribution
 

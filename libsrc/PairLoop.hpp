@@ -6,6 +6,8 @@
 //   struct ViscousTerm {                       // a pair term
 //       using Sum = Vec3;                      // what the loop sums for particle i
 //       static constexpr bool usesGradient = true; // the loop fills pair.gradW (= ∇_i W_ij)
+//       static constexpr bool usesKernel = false;  // (true: the loop fills pair.W = W_ij, from
+//                                                  //  the same table lookup as the gradient)
 //       struct Particle { Vec3 v; Scalar rho; };   // i's own values, read once
 //       Particle particle(std::size_t i) const;
 //       void fluid(const Particle&, const Pair&, Sum&) const;     // neighbour j of the fluid
@@ -57,6 +59,7 @@ struct Pair {
     Vec3 r;          // x_i − x_j (nearest periodic image)
     Scalar r2;       // |r|²
     Vec3 gradW;      // ∇_i W_ij (terms with usesGradient; else zero)
+    Scalar W;        // W_ij (terms with usesKernel; else zero)
     std::uint32_t k; // the pair's place in its list (for data kept per pair)
 };
 
@@ -90,6 +93,24 @@ concept HasWallTerm = requires(const Term& t, const typename Term::Particle& pi,
 template <class Term> constexpr bool usesGradient() {
     if constexpr (requires { Term::usesGradient; }) return Term::usesGradient;
     else return false;
+}
+template <class Term> constexpr bool usesKernel() {
+    if constexpr (requires { Term::usesKernel; }) return Term::usesKernel;
+    else return false;
+}
+// What a term asks of the kernel for one pair: W_ij and ∇_i W_ij (each zero when not asked for),
+// from one table lookup when it asks for both.
+struct PairKernel {
+    Vec3 gradW;
+    Scalar W;
+};
+template <class Term> PairKernel pairKernel(const KernelTable& kt, const Vec3& rij, Scalar r2) {
+    if constexpr (usesGradient<Term>() && usesKernel<Term>()) {
+        const auto v = kt.valuesSq(r2);
+        return {rij * v.gradFactor, v.W};
+    } else if constexpr (usesGradient<Term>()) return {kt.gradWSq(rij, r2), 0};
+    else if constexpr (usesKernel<Term>()) return {Vec3::Zero(), kt.WSq(r2)};
+    else return {Vec3::Zero(), 0};
 }
 // A zero sum: Sum{} for scalars and structs, Zero() for Eigen vectors (whose default
 // constructor leaves them uninitialised).
@@ -128,14 +149,15 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
     const Vec3* cached = gradient && &x == &s.fluid.position() && s.gradients.validFor(s.search)
                              ? s.gradients.values.data()
                              : nullptr;
-    const auto pass = [&](auto fluidGradient) {
+    const auto pass = [&](auto fluidKernel) {
         forEachParticleBalanced(s.search, [&](std::size_t i) {
             const auto pi = term.particle(i);
             Sum sum = detail::zeroSum<Sum>();
             if constexpr (detail::visitsFluid<Term>()) {
                 std::uint32_t k = ff.offsets[i];
                 forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                    term.fluid(pi, Pair{j, rij, r2, fluidGradient(k, rij, r2), k}, sum);
+                    const detail::PairKernel w = fluidKernel(k, rij, r2);
+                    term.fluid(pi, Pair{j, rij, r2, w.gradW, w.W, k}, sum);
                     ++k;
                 });
             }
@@ -146,16 +168,19 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
                     const NeighbourList& list = s.search.wallNeighbours(wallIndex[w]);
                     std::uint32_t k = list.offsets[i];
                     forEachNeighbour(list, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                        const Vec3 g = gradient ? kt.gradWSq(rib, r2) : Vec3::Zero();
-                        term.wall(pi, WallPair{{b, rib, r2, g, k++}, view}, sum);
+                        const detail::PairKernel w = detail::pairKernel<Term>(kt, rib, r2);
+                        term.wall(pi, WallPair{{b, rib, r2, w.gradW, w.W, k++}, view}, sum);
                     });
                 }
             out(i, pi, sum);
         }, wallCount > 0 ? NeighbourSearch::PairWork::FluidAndWall : NeighbourSearch::PairWork::Fluid);
     };
-    if (cached) pass([&](std::uint32_t k, const Vec3&, Scalar) { return cached[k]; });
-    else if constexpr (gradient) pass([&](std::uint32_t, const Vec3& rij, Scalar r2) { return kt.gradWSq(rij, r2); });
-    else pass([](std::uint32_t, const Vec3&, Scalar) { return Vec3::Zero(); });
+    const auto lookUp = [&](std::uint32_t, const Vec3& rij, Scalar r2) { return detail::pairKernel<Term>(kt, rij, r2); };
+    if (cached)
+        pass([&](std::uint32_t k, const Vec3&, Scalar r2) {
+            return detail::PairKernel{cached[k], detail::usesKernel<Term>() ? kt.WSq(r2) : Scalar(0)};
+        });
+    else pass(lookUp);
 }
 
 // out(i, particle_i, Σ) for every fluid particle, Σ = Σ_j term.cached(particle_i, j, ∇W_ij) over
@@ -184,16 +209,16 @@ struct SummationDensityTerm {
     struct Sum {
         Scalar fluid = 0, wall = 0; // Σ_j W_ij, Σ_b M_b W_ib
     };
+    static constexpr bool usesKernel = true;
     struct Particle {};
-    const KernelTable& kt;
     Particle particle(std::size_t) const { return {}; }
-    void fluid(const Particle&, const Pair& p, Sum& sum) const { sum.fluid += kt.WSq(p.r2); }
-    void wall(const Particle&, const WallPair& p, Sum& sum) const { sum.wall += p.mass() * kt.WSq(p.r2); }
+    void fluid(const Particle&, const Pair& p, Sum& sum) const { sum.fluid += p.W; }
+    void wall(const Particle&, const WallPair& p, Sum& sum) const { sum.wall += p.mass() * p.W; }
 };
 inline void summationDensity(const Scene& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
     const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0();
     rho.resize(x.size());
-    forEachPairSum(s, x, SummationDensityTerm{s.kernel}, [&](std::size_t i, const auto&, const auto& sum) {
+    forEachPairSum(s, x, SummationDensityTerm{}, [&](std::size_t i, const auto&, const auto& sum) {
         rho[i] = m * (w0 + sum.fluid) + sum.wall;
     });
 }
@@ -216,6 +241,48 @@ inline void continuityDensityRate(const Scene& s, std::vector<Scalar>& rate) {
     rate.resize(s.fluid.size());
     forEachPairSum(s, s.fluid.position(), ContinuityTerm{s.fluid.velocity().data()},
                    [&](std::size_t i, const auto&, const auto& sum) { rate[i] = m * sum.fluid + sum.wall; });
+}
+
+// Two pair terms summed in one pass over the pairs (each pair's kernel values looked up once),
+// for models that add to a core term (a density diffusion to the continuity equation): Sum and
+// Particle hold each term's own; a wall pair goes to the terms that have a wall().
+template <class A, class B> struct TwoTerms {
+    static_assert(detail::visitsFluid<A>() && detail::visitsFluid<B>(), "TwoTerms: terms that visit the fluid");
+    struct Sum {
+        typename A::Sum a = detail::zeroSum<typename A::Sum>();
+        typename B::Sum b = detail::zeroSum<typename B::Sum>();
+    };
+    struct Particle {
+        typename A::Particle a;
+        typename B::Particle b;
+    };
+    static constexpr bool usesGradient = detail::usesGradient<A>() || detail::usesGradient<B>();
+    static constexpr bool usesKernel = detail::usesKernel<A>() || detail::usesKernel<B>();
+    A first;
+    B second;
+    Particle particle(std::size_t i) const { return {first.particle(i), second.particle(i)}; }
+    void fluid(const Particle& pi, const Pair& p, Sum& sum) const {
+        first.fluid(pi.a, p, sum.a);
+        second.fluid(pi.b, p, sum.b);
+    }
+    void wall(const Particle& pi, const WallPair& p, Sum& sum) const
+        requires(detail::HasWallTerm<A> || detail::HasWallTerm<B>)
+    {
+        if constexpr (detail::HasWallTerm<A>) first.wall(pi.a, p, sum.a);
+        if constexpr (detail::HasWallTerm<B>) second.wall(pi.b, p, sum.b);
+    }
+};
+
+// The continuity equation with a density diffusion term D (Sum = Scalar, fluid pairs) in the
+// same pass: rate_i = m Σ_j (v_i − v_j)·∇W_ij + Σ_b M_b (v_i − v_b)·∇W_ib + scale Σ_j D_ij.
+template <class Diffusion>
+inline void continuityDensityRate(const Scene& s, std::vector<Scalar>& rate, const Diffusion& diffusion, Scalar scale) {
+    const Scalar m = s.fluid.particleMass();
+    rate.resize(s.fluid.size());
+    forEachPairSum(s, s.fluid.position(), TwoTerms<ContinuityTerm, Diffusion>{{s.fluid.velocity().data()}, diffusion},
+                   [&](std::size_t i, const auto&, const auto& sum) {
+                       rate[i] = m * sum.a.fluid + sum.a.wall + scale * sum.b;
+                   });
 }
 
 // The symmetric pressure acceleration from q = p/ρ² (Monaghan 1992):

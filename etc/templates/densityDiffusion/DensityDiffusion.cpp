@@ -26,11 +26,11 @@ class TemplateDensityDiffusion final : public DensityDiffusion {
 public:
     explicit TemplateDensityDiffusion(const ModelContext& c) : delta_(c.dict.getOrDefault<Scalar>("delta", 0.1)) {}
 
-    void addRate(const Scene& s, std::vector<Scalar>& rate) const override {
+    // the continuity equation's rate with the term added, both in one pass over the pairs
+    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
         const Scalar h = s.constants.supportRadius;
         const Scalar scale = delta_ * h * s.constants.soundSpeed * s.fluid.particleMass();
-        forEachPairSum(s, s.fluid.position(), DiffusionTerm{s.fluid.density().data(), Scalar(0.01) * h * h},
-                       [&](std::size_t i, Scalar, Scalar sum) { rate[i] += scale * sum; });
+        continuityDensityRate(s, rate, DiffusionTerm{s.fluid.density().data(), Scalar(0.01) * h * h}, scale);
     }
 
 private:

@@ -67,7 +67,7 @@ public:
         dimension_ = s.physics.dimension;
     }
 
-    void addRate(const Scene& s, std::vector<Scalar>& rate) const override {
+    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
         const Scalar m = s.fluid.particleMass(), h = s.constants.supportRadius;
         const auto& x = s.fluid.position();
         const Scalar* rho = s.fluid.density().data();
@@ -87,8 +87,7 @@ public:
             gradient[i] = g;
         });
         const Scalar scale = delta_ * h * s.constants.soundSpeed * m;
-        forEachPairSum(s, x, AntuonoTerm{rho, gradient.data(), Scalar(0.01) * h * h},
-                       [&](std::size_t i, const auto&, Scalar sum) { rate[i] += scale * sum; });
+        continuityDensityRate(s, rate, AntuonoTerm{rho, gradient.data(), Scalar(0.01) * h * h}, scale);
     }
 
 private:

@@ -42,13 +42,13 @@ public:
                                      "pressure model (wcsph, isobaric)");
     }
 
-    void addRate(const Scene& s, std::vector<Scalar>& rate) const override {
+    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
         const SceneConstants& c = s.constants;
         const Scalar h = c.supportRadius;
         const Scalar scale = delta_ * h * c.soundSpeed * s.fluid.particleMass();
         const FourtakasTerm term{s.fluid.density().data(), Scalar(0.01) * h * h,
                                  Vec3(-c.rho0 * s.physics.gravity / (c.soundSpeed * c.soundSpeed))};
-        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, Scalar, Scalar sum) { rate[i] += scale * sum; });
+        continuityDensityRate(s, rate, term, scale);
     }
 
 private:

@@ -32,11 +32,10 @@ public:
         if (!(delta_ >= 0)) throw InputError(c.dict.locationOf("delta"), "delta must not be negative", "delta");
     }
 
-    void addRate(const Scene& s, std::vector<Scalar>& rate) const override {
+    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
         const Scalar h = s.constants.supportRadius;
         const Scalar scale = delta_ * h * s.constants.soundSpeed * s.fluid.particleMass();
-        forEachPairSum(s, s.fluid.position(), MolteniTerm{s.fluid.density().data(), Scalar(0.01) * h * h},
-                       [&](std::size_t i, Scalar, Scalar sum) { rate[i] += scale * sum; });
+        continuityDensityRate(s, rate, MolteniTerm{s.fluid.density().data(), Scalar(0.01) * h * h}, scale);
     }
 
 private:

@@ -16,19 +16,18 @@ struct DensityAndGradientSumsTerm {
         Vec3 grad = Vec3::Zero();                          // Σ ∇W_ij
         Vec3 wallGrad = Vec3::Zero(), mirroredGrad = Vec3::Zero(); // Σ M_b ∇W_ib, over the walls that mirror p
     };
-    static constexpr bool usesGradient = true;
+    static constexpr bool usesGradient = true, usesKernel = true;
     struct Particle {};
-    const KernelTable& kt;
     Vec3* gradients;
     Particle particle(std::size_t) const { return {}; }
     void fluid(const Particle&, const Pair& q, Sum& sum) const {
-        sum.w += kt.WSq(q.r2);
+        sum.w += q.W;
         gradients[q.k] = q.gradW;
         sum.grad += q.gradW;
         sum.squares += q.gradW.squaredNorm();
     }
     void wall(const Particle&, const WallPair& q, Sum& sum) const {
-        sum.wall += q.mass() * kt.WSq(q.r2);
+        sum.wall += q.mass() * q.W;
         const Vec3 g = q.mass() * q.gradW;
         sum.wallGrad += g;
         if (q.wall.mirrored) sum.mirroredGrad += g;

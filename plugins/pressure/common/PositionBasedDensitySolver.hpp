@@ -219,18 +219,17 @@ private:
             Scalar w = 0, squares = 0, wall = 0;
             Vec3 grad = Vec3::Zero(), wallGrad = Vec3::Zero();
         };
-        static constexpr bool usesGradient = true;
+        static constexpr bool usesGradient = true, usesKernel = true;
         struct Particle {};
-        const KernelTable& kt;
         Scalar invRho0;
         Particle particle(std::size_t) const { return {}; }
         void fluid(const Particle&, const Pair& q, Sum& sum) const {
-            sum.w += kt.WSq(q.r2);
+            sum.w += q.W;
             sum.grad += q.gradW;
             sum.squares += q.gradW.squaredNorm();
         }
         void wall(const Particle&, const WallPair& q, Sum& sum) const {
-            sum.wall += q.mass() * kt.WSq(q.r2);
+            sum.wall += q.mass() * q.W;
             sum.wallGrad += (q.mass() * invRho0) * q.gradW;
         }
     };
@@ -239,7 +238,7 @@ private:
     void constraintStep(const Scene& s) {
         const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0(), rho0 = rho0_, V = volume_, eps = epsilon_;
         const bool clamp = options_.clampDensity;
-        forEachPairSum(s, predicted_, ConstraintTerm{s.kernel, 1 / rho0}, [&](std::size_t i, const auto&, const auto& sum) {
+        forEachPairSum(s, predicted_, ConstraintTerm{1 / rho0}, [&](std::size_t i, const auto&, const auto& sum) {
             const Scalar rho = m * (w0 + sum.w) + sum.wall;
             const Vec3 grad = V * sum.grad + sum.wallGrad;
             rhoPredicted_[i] = rho;

@@ -12,6 +12,7 @@
 // soundSpeed()) and read back from Scene::constants in initialise().
 #pragma once
 
+#include "DensityDiffusion.hpp"
 #include "Dictionary.hpp"
 #include "Log.hpp"
 #include "PairLoop.hpp"
@@ -65,7 +66,8 @@ struct TaitEquationOfState {
         if (continuity)
             s.integratedFields.push_back({&s.fluid.density(), &s.fluid.addScalar("densityRate", {false, false}),
                                           [](const Scene& scene, std::vector<Scalar>& rate) {
-                                              continuityDensityRate(scene, rate);
+                                              if (scene.densityDiffusion) scene.densityDiffusion->densityRate(scene, rate);
+                                              else continuityDensityRate(scene, rate);
                                           }});
     }
 

@@ -96,6 +96,7 @@ public:
     // the last step's check when it searched at exactly these positions (the core then kept
     // that search, and the cached gradients are still valid).
     void computeDensity(Scene& s) override {
+        startRate_.clear(); // (a check's density was taken with the velocities before its step)
         if (checkPassed_ && s.search.builtAt(s.fluid.position()) && s.gradients.validFor(s.search)) {
             s.fluid.density().swap(*nextDensity_);
             checkPassed_ = false;
@@ -107,7 +108,7 @@ public:
                          "as symplecticEuler computes them): the check is approximate and costs a neighbour "
                          "search of its own each step");
         checkPassed_ = false;
-        densityAndFactors(s, s.fluid.position(), s.fluid.density());
+        densityAndFactors(s, s.fluid.position(), s.fluid.density(), &startRate_);
     }
 
     void addPressureAcceleration(Scene& s, Scalar dt) override {
@@ -135,10 +136,16 @@ public:
             // warm start only where the fluid still compresses (SPlisHSPlasH's condition: a
             // surface particle's last push, carried into a step where it expands, shot the
             // Colagrossi column's top layer up at 11 m/s)
-            densityRatePass(s, [&](std::size_t i, Scalar rate) {
+            const auto warmWhereCompressing = [&](std::size_t i, Scalar rate) {
                 const bool full = ff.count(i) + s.search.wallNeighbourCount(i) >= minNeighbours_;
                 if (!(full && rate > 0)) kv[i] = 0;
-            });
+            };
+            if (startRate_.size() == n) {
+#pragma omp parallel for schedule(static)
+                for (std::size_t i = 0; i < n; ++i) warmWhereCompressing(i, startRate_[i]);
+            } else {
+                densityRatePass(s, warmWhereCompressing);
+            }
             warmStartVelocities(s, kv, dt, invDt);
             for (;;) {
                 densityRatePass(s, [&](std::size_t i, Scalar rate) {
@@ -242,8 +249,10 @@ private:
     }
 
     // ρ_i, α_i, the pair gradients and the wall sums at positions x, on the lists of the search's
-    // last build (which must be at x), the density into rho.
-    void densityAndFactors(Scene& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
+    // last build (which must be at x), the density into rho; with 'rate', Dρ_i/Dt of the fluid's
+    // velocities too, in the same pass (the divergence solve's warm-start condition).
+    void densityAndFactors(Scene& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho,
+                           std::vector<Scalar>* rate = nullptr) {
         const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0(), h = s.constants.supportRadius;
         const Scalar tiny = Scalar(1e-9) * rho0_ * rho0_ / (h * h);
         rho.resize(x.size());
@@ -252,15 +261,25 @@ private:
         auto& wallRate = *wallRate_;
         s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
         s.gradients.invalidate();
-        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.kernel, s.gradients.values.data()},
-                       [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) {
-                           rho[i] = m * (w0 + sum.w) + sum.wall;
-                           wallGradient[i] = sum.wallGrad;
-                           wallRate[i] = sum.wallRate;
-                           const Vec3 g = m * sum.grad + sum.wallGrad;
-                           const Scalar denominator = g.squaredNorm() + m * m * sum.squares;
-                           alphaOverRho[i] = denominator > tiny ? 1 / denominator : Scalar(0);
-                       });
+        const auto factors = [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
+            rho[i] = m * (w0 + sum.w) + sum.wall;
+            wallGradient[i] = sum.wallGrad;
+            wallRate[i] = sum.wallRate;
+            const Vec3 g = m * sum.grad + sum.wallGrad;
+            const Scalar denominator = g.squaredNorm() + m * m * sum.squares;
+            alphaOverRho[i] = denominator > tiny ? 1 / denominator : Scalar(0);
+        };
+        const DensityAndGradientSumsTerm sums{s.gradients.values.data()};
+        if (rate) {
+            rate->resize(x.size());
+            forEachPairSum(s, x, TwoTerms<DensityAndGradientSumsTerm, ContinuityTerm>{sums, {s.fluid.velocity().data()}},
+                           [&](std::size_t i, const auto&, const auto& sum) {
+                               factors(i, sum.a);
+                               (*rate)[i] = m * sum.b.fluid + sum.b.wall;
+                           });
+        } else {
+            forEachPairSum(s, x, sums, [&](std::size_t i, const auto&, const auto& sum) { factors(i, sum); });
+        }
         s.gradients.build = s.search.builds();
     }
 
@@ -326,6 +345,7 @@ private:
     std::vector<Scalar> rate_, kappaOverRho_;
     std::vector<Scalar>* kappa_ = nullptr;  // field dfsphKappa: κ of the density solve
     std::vector<Scalar>* kappaV_ = nullptr; // field dfsphKappaV: κ of the divergence solve
+    std::vector<Scalar> startRate_;         // Dρ/Dt of the step's starting velocities (computeDensity's pass)
     std::vector<Scalar>* offset_ = nullptr; // field dfsphDensityOffset (checkPositions): δ
     // scratch fields: α_i/ρ_i = 1/(eq. 8's denominator), Σ_b M_b ∇W_ib, Σ_b M_b v_b·∇W_ib, and
     // (checkPositions) the density at the positions of the last check

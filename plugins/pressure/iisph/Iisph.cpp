@@ -120,7 +120,7 @@ public:
         wallRate_.resize(n);
         s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
         s.gradients.invalidate();
-        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.kernel, s.gradients.values.data()},
+        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.gradients.values.data()},
                        [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) {
                            const Scalar r = m * (w0 + sum.w) + sum.wall;
                            rho[i] = r;

@@ -58,17 +58,16 @@ struct ShiftTerm {
         Mat3 moment = Mat3::Zero();
         Vec3 colour = Vec3::Zero();
     };
-    static constexpr bool usesGradient = true;
+    static constexpr bool usesGradient = true, usesKernel = true;
     using Particle = Scalar; // ρ_i
-    const KernelTable& kt;
     const Scalar* rho;
     Scalar m, R, invWdx;
     int n;
     bool surface;
     Particle particle(std::size_t i) const { return rho[i]; }
-    Scalar weight(Scalar r2) const { return 1 + R * std::pow(kt.WSq(r2) * invWdx, Scalar(n)); }
+    Scalar weight(Scalar W) const { return 1 + R * std::pow(W * invWdx, Scalar(n)); }
     void add(Scalar rhoi, Scalar mass, Scalar rhoj, const Pair& q, Sum& sum) const {
-        sum.shift += (weight(q.r2) * mass / (rhoi + rhoj)) * q.gradW;
+        sum.shift += (weight(q.W) * mass / (rhoi + rhoj)) * q.gradW;
         if (surface) {
             const Scalar V = mass / rhoj;
             sum.moment.noalias() -= V * q.r * q.gradW.transpose();
@@ -135,7 +134,7 @@ public:
         const int d = s.physics.dimension;
         const bool surface = freeSurface_;
         zoneCode_.assign(count, 0);
-        const ShiftTerm term{s.kernel, s.fluid.density().data(), s.fluid.particleMass(), R_, invWdx_, n_, surface};
+        const ShiftTerm term{s.fluid.density().data(), s.fluid.particleMass(), R_, invWdx_, n_, surface};
         forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, Scalar, const ShiftTerm::Sum& sum) {
             shift[i] = scale * sum.shift;
             if (!surface) return;
