@@ -19,10 +19,11 @@ struct MolteniTerm {
     static constexpr bool usesGradient = true;
     using Particle = Scalar; // ρ_i
     const Scalar* rho;
-    Scalar eps; // 0.01 h²
+    const Scalar* invRho; // 1/ρ_j, taken once per particle (a division per pair less)
+    Scalar eps;           // 0.01 h²
     Particle particle(std::size_t i) const { return rho[i]; }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const {
-        sum += (rhoi - rho[q.j]) / rho[q.j] * q.r.dot(q.gradW) / (q.r2 + eps);
+        sum += (rhoi * invRho[q.j] - 1) * q.r.dot(q.gradW) / (q.r2 + eps);
     }
 };
 
@@ -35,11 +36,16 @@ public:
     void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
         const Scalar h = s.constants.supportRadius;
         const Scalar scale = delta_ * h * s.constants.soundSpeed * s.fluid.particleMass();
-        continuityDensityRate(s, rate, MolteniTerm{s.fluid.density().data(), Scalar(0.01) * h * h}, scale);
+        const auto& rho = s.fluid.density();
+        invRho_.resize(rho.size());
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < rho.size(); ++i) invRho_[i] = 1 / rho[i];
+        continuityDensityRate(s, rate, MolteniTerm{rho.data(), invRho_.data(), Scalar(0.01) * h * h}, scale);
     }
 
 private:
     Scalar delta_;
+    mutable std::vector<Scalar> invRho_; // scratch
 };
 } // namespace
 
