@@ -48,12 +48,14 @@ void KernelTable::build(const Kernel& kernel, int intervals) {
     invDs_ = Scalar(sqIntervals_ / h2);
     nearIntervals_ = (sqIntervals_ + 15) / 16;
     wSq_ = tabulate([&](double s) { return double(kernel.W(Scalar(std::sqrt(s)))); }, h2, sqIntervals_);
-    gradSq_ = tabulate(
-        [&](double s) {
-            const double r = std::sqrt(s);
-            return r > 0 ? double(kernel.dWdr(Scalar(r))) / r : 0.0;
-        },
-        h2, sqIntervals_);
+    const auto gradFactor = [&](double s) {
+        const double r = std::sqrt(s);
+        return r > 0 ? double(kernel.dWdr(Scalar(r))) / r : 0.0;
+    };
+    gradSq_ = tabulate(gradFactor, h2, sqIntervals_);
+    const double eta2 = 0.01 * h2;
+    eta2_ = Scalar(eta2);
+    dampedSq_ = tabulate([&](double s) { return gradFactor(s) / (s + eta2); }, h2, sqIntervals_);
     lap_.clear();
 }
 

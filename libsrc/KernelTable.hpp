@@ -63,21 +63,28 @@ public:
         return horner(gradSq_[k], s - Scalar(k));
     }
     Vec3 gradWSq(const Vec3& rij, Scalar r2) const { return rij * gradFactorSq(r2); }
-    // W and dW/dr / r from one lookup of r²'s interval (terms that sum both, e.g. a density
-    // and its gradient: half the index arithmetic of WSq and gradFactorSq called apart).
+    // (dW/dr / r) / (r² + η²), η² = 0.01 h² (Monaghan's η, h the support radius): the factor of
+    // the viscous and density-diffusion terms, ∇_i W_ij / (r² + η²) = r_ij · dampedGradFactorSq(r²),
+    // tabulated so that a pair costs no division.
+    Scalar eta2() const { return eta2_; }
+    Scalar dampedGradFactorSq(Scalar r2) const { return valuesSq(r2).dampedGradFactor; }
+
+    // W, dW/dr / r and the damped factor from one lookup of r²'s interval (a pair loop takes
+    // the ones its term asks for; the others are never computed once inlined).
     struct Values {
-        Scalar W, gradFactor;
+        Scalar W, gradFactor, dampedGradFactor;
     };
     Values valuesSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
         const int k = static_cast<int>(s);
-        if (k >= sqIntervals_ || r2 < Scalar(0)) return {0, 0};
+        if (k >= sqIntervals_ || r2 < Scalar(0)) return {0, 0, 0};
         if (k < nearIntervals_) {
             const Scalar r = std::sqrt(r2);
-            return {W(r), r > Scalar(0) ? dWdr(r) / r : Scalar(0)};
+            const Scalar F = r > Scalar(0) ? dWdr(r) / r : Scalar(0);
+            return {W(r), F, F / (r2 + eta2_)};
         }
         const Scalar t = s - Scalar(k);
-        return {horner(wSq_[k], t), horner(gradSq_[k], t)};
+        return {horner(wSq_[k], t), horner(gradSq_[k], t), horner(dampedSq_[k], t)};
     }
 
     Scalar W0() const { return w0_; } // W(0), the self contribution
@@ -96,9 +103,9 @@ private:
     template <class F> std::vector<Block> tabulate(F&& f, double end, int intervals) const;
 
     const Kernel* kernel_ = nullptr; // for enableLaplacian(); owned by the caller
-    Scalar h_ = 0, invDr_ = 0, invDs_ = 0, w0_ = 0;
+    Scalar h_ = 0, invDr_ = 0, invDs_ = 0, w0_ = 0, eta2_ = 0;
     int dim_ = 3, intervals_ = 0, sqIntervals_ = 0, nearIntervals_ = 0; // r² intervals below (h/4)²
-    std::vector<Block> w_, dw_, lap_, wSq_, gradSq_;
+    std::vector<Block> w_, dw_, lap_, wSq_, gradSq_, dampedSq_;
 };
 
 } // namespace spindrift

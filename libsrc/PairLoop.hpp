@@ -8,6 +8,8 @@
 //       static constexpr bool usesGradient = true; // the loop fills pair.gradW (= ∇_i W_ij)
 //       static constexpr bool usesKernel = false;  // (true: the loop fills pair.W = W_ij, from
 //                                                  //  the same table lookup as the gradient)
+//       static constexpr bool usesDampedGradient = false; // (true: pair.dampedGradFactor, with
+//                                                  //  ∇_i W_ij/(r² + η²) = r_ij · that; KernelTable)
 //       struct Particle { Vec3 v; Scalar rho; };   // i's own values, read once
 //       Particle particle(std::size_t i) const;
 //       void fluid(const Particle&, const Pair&, Sum&) const;     // neighbour j of the fluid
@@ -60,6 +62,7 @@ struct Pair {
     Scalar r2;       // |r|²
     Vec3 gradW;      // ∇_i W_ij (terms with usesGradient; else zero)
     Scalar W;        // W_ij (terms with usesKernel; else zero)
+    Scalar dampedGradFactor; // ∇_i W_ij/(r² + η²) = r · this, η² = 0.01 h² (usesDampedGradient; else zero)
     std::uint32_t k; // the pair's place in its list (for data kept per pair)
 };
 
@@ -98,19 +101,26 @@ template <class Term> constexpr bool usesKernel() {
     if constexpr (requires { Term::usesKernel; }) return Term::usesKernel;
     else return false;
 }
-// What a term asks of the kernel for one pair: W_ij and ∇_i W_ij (each zero when not asked for),
-// from one table lookup when it asks for both.
+template <class Term> constexpr bool usesDampedGradient() {
+    if constexpr (requires { Term::usesDampedGradient; }) return Term::usesDampedGradient;
+    else return false;
+}
+// What a term asks of the kernel for one pair: ∇_i W_ij, W_ij, the damped gradient factor (each
+// zero when not asked for), from one table lookup (the values not asked for are never computed).
+// withGradient false: the caller has the gradient (the scene's cache).
 struct PairKernel {
     Vec3 gradW;
-    Scalar W;
+    Scalar W, dampedGradFactor;
 };
-template <class Term> PairKernel pairKernel(const KernelTable& kt, const Vec3& rij, Scalar r2) {
-    if constexpr (usesGradient<Term>() && usesKernel<Term>()) {
-        const auto v = kt.valuesSq(r2);
-        return {rij * v.gradFactor, v.W};
-    } else if constexpr (usesGradient<Term>()) return {kt.gradWSq(rij, r2), 0};
-    else if constexpr (usesKernel<Term>()) return {Vec3::Zero(), kt.WSq(r2)};
-    else return {Vec3::Zero(), 0};
+template <class Term, bool withGradient = true>
+PairKernel pairKernel(const KernelTable& kt, const Vec3& rij, Scalar r2) {
+    constexpr bool g = withGradient && usesGradient<Term>(), w = usesKernel<Term>(), d = usesDampedGradient<Term>();
+    if constexpr (!g && !w && !d) {
+        return {Vec3::Zero(), 0, 0};
+    } else {
+        const KernelTable::Values v = kt.valuesSq(r2);
+        return {g ? Vec3(rij * v.gradFactor) : Vec3::Zero(), w ? v.W : Scalar(0), d ? v.dampedGradFactor : Scalar(0)};
+    }
 }
 // A zero sum: Sum{} for scalars and structs, Zero() for Eigen vectors (whose default
 // constructor leaves them uninitialised).
@@ -157,7 +167,7 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
                 std::uint32_t k = ff.offsets[i];
                 forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
                     const detail::PairKernel w = fluidKernel(k, rij, r2);
-                    term.fluid(pi, Pair{j, rij, r2, w.gradW, w.W, k}, sum);
+                    term.fluid(pi, Pair{j, rij, r2, w.gradW, w.W, w.dampedGradFactor, k}, sum);
                     ++k;
                 });
             }
@@ -169,7 +179,7 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
                     std::uint32_t k = list.offsets[i];
                     forEachNeighbour(list, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
                         const detail::PairKernel w = detail::pairKernel<Term>(kt, rib, r2);
-                        term.wall(pi, WallPair{{b, rib, r2, w.gradW, w.W, k++}, view}, sum);
+                        term.wall(pi, WallPair{{b, rib, r2, w.gradW, w.W, w.dampedGradFactor, k++}, view}, sum);
                     });
                 }
             out(i, pi, sum);
@@ -177,8 +187,10 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
     };
     const auto lookUp = [&](std::uint32_t, const Vec3& rij, Scalar r2) { return detail::pairKernel<Term>(kt, rij, r2); };
     if (cached)
-        pass([&](std::uint32_t k, const Vec3&, Scalar r2) {
-            return detail::PairKernel{cached[k], detail::usesKernel<Term>() ? kt.WSq(r2) : Scalar(0)};
+        pass([&](std::uint32_t k, const Vec3& rij, Scalar r2) {
+            detail::PairKernel w = detail::pairKernel<Term, false>(kt, rij, r2);
+            w.gradW = cached[k];
+            return w;
         });
     else pass(lookUp);
 }
@@ -258,6 +270,7 @@ template <class A, class B> struct TwoTerms {
     };
     static constexpr bool usesGradient = detail::usesGradient<A>() || detail::usesGradient<B>();
     static constexpr bool usesKernel = detail::usesKernel<A>() || detail::usesKernel<B>();
+    static constexpr bool usesDampedGradient = detail::usesDampedGradient<A>() || detail::usesDampedGradient<B>();
     A first;
     B second;
     Particle particle(std::size_t i) const { return {first.particle(i), second.particle(i)}; }

@@ -152,7 +152,10 @@ TEST_P(KernelContract, TableMatchesAnalyticKernel) {
     KernelTable table(*k);
     table.enableLaplacian();
     const double h = k->supportRadius();
-    double errW = 0, errD = 0, errL = 0, maxW = 0, maxD = 0, maxL = 0, errWSq = 0, errDSq = 0;
+    double errW = 0, errD = 0, errL = 0, maxW = 0, maxD = 0, maxL = 0, errWSq = 0, errDSq = 0, errDamped = 0,
+           maxDamped = 0;
+    const double eta2 = 0.01 * h * h;
+    EXPECT_NEAR(table.eta2(), eta2, 1e-6 * eta2);
     for (int i = 0; i <= 100000; ++i) {
         const double r = h * i / 100000.0 * 0.999999;
         errW = std::max<double>(errW, std::abs(table.W(r) - k->W(r)));
@@ -165,7 +168,14 @@ TEST_P(KernelContract, TableMatchesAnalyticKernel) {
         errWSq = std::max<double>(errWSq, std::abs(table.WSq(r * r) - k->W(r)));
         // (at r = 0 the gradient is zero by definition, whatever dW/dr is there: the spiky kernel)
         if (r > 0) errDSq = std::max<double>(errDSq, std::abs(table.gradFactorSq(r * r) * r - k->dWdr(r)));
+        // the viscous and diffusion terms' r · ∇W/(r² + η²) = r² · dampedGradFactorSq(r²)
+        if (r > 0) {
+            const double exact = r * k->dWdr(r) / (r * r + eta2);
+            errDamped = std::max<double>(errDamped, std::abs(table.dampedGradFactorSq(r * r) * r * r - exact));
+            maxDamped = std::max<double>(maxDamped, std::abs(exact));
+        }
     }
+    EXPECT_LT(errDamped / maxDamped, test::tol(1e-6, 1e-5));
     EXPECT_LT(errW / maxW, test::tol(1e-6, 1e-5));
     EXPECT_LT(errD / maxD, test::tol(1e-6, 1e-5));
     EXPECT_LT(errL / maxL, test::tol(1e-6, 1e-5));

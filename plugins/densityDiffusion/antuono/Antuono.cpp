@@ -41,18 +41,17 @@ struct DensityGradientTerm {
 
 struct AntuonoTerm {
     using Sum = Scalar;
-    static constexpr bool usesGradient = true;
+    static constexpr bool usesDampedGradient = true; // (r_ij·∇W_ij)/(r² + 0.01 h²) = r² q.dampedGradFactor
     struct Particle {
         Scalar rho;
         Vec3 gradient;
     };
     const Scalar* rho;
     const Vec3* gradient;
-    Scalar eps;
     Particle particle(std::size_t i) const { return {rho[i], gradient[i]}; }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
         const Scalar bracket = pi.rho - rho[q.j] - Scalar(0.5) * (pi.gradient + gradient[q.j]).dot(q.r);
-        sum += bracket / rho[q.j] * q.r.dot(q.gradW) / (q.r2 + eps);
+        sum += bracket / rho[q.j] * q.r2 * q.dampedGradFactor;
     }
 };
 
@@ -87,7 +86,7 @@ public:
             gradient[i] = g;
         });
         const Scalar scale = delta_ * h * s.constants.soundSpeed * m;
-        continuityDensityRate(s, rate, AntuonoTerm{rho, gradient.data(), Scalar(0.01) * h * h}, scale);
+        continuityDensityRate(s, rate, AntuonoTerm{rho, gradient.data()}, scale);
     }
 
 private:

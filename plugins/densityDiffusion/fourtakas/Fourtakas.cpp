@@ -19,15 +19,14 @@ using namespace spindrift;
 
 struct FourtakasTerm {
     using Sum = Scalar;
-    static constexpr bool usesGradient = true;
+    static constexpr bool usesDampedGradient = true; // (r_ij·∇W_ij)/(r² + 0.01 h²) = r² q.dampedGradFactor
     using Particle = Scalar; // ρ_i
     const Scalar* rho;
     const Scalar* invRho; // 1/ρ_j, taken once per particle (a division per pair less)
-    Scalar eps;
     Vec3 hydrostatic; // −ρ0 g / c0²: ρ^H_ji = hydrostatic · r_ij
     Particle particle(std::size_t i) const { return rho[i]; }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const {
-        sum += ((rhoi + hydrostatic.dot(q.r)) * invRho[q.j] - 1) * q.r.dot(q.gradW) / (q.r2 + eps);
+        sum += ((rhoi + hydrostatic.dot(q.r)) * invRho[q.j] - 1) * q.r2 * q.dampedGradFactor;
     }
 };
 
@@ -51,7 +50,7 @@ public:
         invRho_.resize(rho.size());
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < rho.size(); ++i) invRho_[i] = 1 / rho[i];
-        const FourtakasTerm term{rho.data(), invRho_.data(), Scalar(0.01) * h * h,
+        const FourtakasTerm term{rho.data(), invRho_.data(),
                                  Vec3(-c.rho0 * s.physics.gravity / (c.soundSpeed * c.soundSpeed))};
         continuityDensityRate(s, rate, term, scale);
     }

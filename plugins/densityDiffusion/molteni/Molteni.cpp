@@ -16,14 +16,13 @@ using namespace spindrift;
 
 struct MolteniTerm {
     using Sum = Scalar;
-    static constexpr bool usesGradient = true;
+    static constexpr bool usesDampedGradient = true; // (r_ij·∇W_ij)/(r² + 0.01 h²) = r² q.dampedGradFactor
     using Particle = Scalar; // ρ_i
     const Scalar* rho;
     const Scalar* invRho; // 1/ρ_j, taken once per particle (a division per pair less)
-    Scalar eps;           // 0.01 h²
     Particle particle(std::size_t i) const { return rho[i]; }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const {
-        sum += (rhoi * invRho[q.j] - 1) * q.r.dot(q.gradW) / (q.r2 + eps);
+        sum += (rhoi * invRho[q.j] - 1) * q.r2 * q.dampedGradFactor;
     }
 };
 
@@ -40,7 +39,7 @@ public:
         invRho_.resize(rho.size());
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < rho.size(); ++i) invRho_[i] = 1 / rho[i];
-        continuityDensityRate(s, rate, MolteniTerm{rho.data(), invRho_.data(), Scalar(0.01) * h * h}, scale);
+        continuityDensityRate(s, rate, MolteniTerm{rho.data(), invRho_.data()}, scale);
     }
 
 private:

@@ -25,23 +25,23 @@ using namespace spindrift;
 // (μ_i + μ_j)/(ρ_i ρ_j) r² F(r²)/(r² + ε) (v_i − v_j), F = (dW/dr)/r; m and ν applied after.
 struct LaminarTerm {
     using Sum = Vec3;
+    static constexpr bool usesDampedGradient = true; // r² F(r²)/(r² + ε) = r² q.dampedGradFactor
     struct Particle {
         Vec3 v;
         Scalar rho;
     };
-    const KernelTable& kt;
     const Vec3* v;
     const Scalar* rho;
-    Scalar m, eps, wallFactor;
+    Scalar m, wallFactor;
     bool visitsWalls;
     Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
-    Scalar shape(Scalar r2) const { return r2 * kt.gradFactorSq(r2) / (r2 + eps); }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
-        sum += (m * (pi.rho + rho[q.j]) / (pi.rho * rho[q.j]) * shape(q.r2)) * (pi.v - v[q.j]);
+        sum += (m * (pi.rho + rho[q.j]) / (pi.rho * rho[q.j]) * q.r2 * q.dampedGradFactor) * (pi.v - v[q.j]);
     }
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
         const Scalar rhob = q.wall.mirrored ? pi.rho : q.wall.rho[q.j];
-        sum += (wallFactor * q.mass() * (pi.rho + rhob) / (pi.rho * rhob) * shape(q.r2)) * (pi.v - q.wall.vViscous[q.j]);
+        sum += (wallFactor * q.mass() * (pi.rho + rhob) / (pi.rho * rhob) * q.r2 * q.dampedGradFactor) *
+               (pi.v - q.wall.vViscous[q.j]);
     }
 };
 
@@ -65,10 +65,10 @@ public:
     }
 
     void addAcceleration(Scene& s, Scalar) override {
-        const Scalar h = s.constants.supportRadius, nu = nu_ * correction_;
+        const Scalar nu = nu_ * correction_;
         auto& a = s.fluid.acceleration();
-        const LaminarTerm term{s.kernel, s.fluid.velocity().data(), s.fluid.density().data(), s.fluid.particleMass(),
-                               Scalar(0.01) * h * h, wallFactor_, wallFactor_ != 0};
+        const LaminarTerm term{s.fluid.velocity().data(), s.fluid.density().data(), s.fluid.particleMass(), wallFactor_,
+                               wallFactor_ != 0};
         forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += nu * sum; });
     }
 
@@ -77,7 +77,7 @@ public:
     // relative to the exact Laplacian e (1 for an exact quadrature, ε = 0).
     static Scalar latticeSecondMoment(const Scene& s) {
         const auto& kt = s.kernel;
-        const double dx = s.physics.particleSpacing, h = s.constants.supportRadius, eps = 0.01 * h * h;
+        const double dx = s.physics.particleSpacing, h = s.constants.supportRadius;
         const double V0 = s.fluid.particleMass() / s.physics.rho0;
         const int reach = int(std::ceil(h / dx)), dim = s.physics.dimension;
         double sum = 0;
@@ -86,7 +86,7 @@ public:
                 for (int i = -reach; i <= reach; ++i) {
                     // (−W'/r) from the table the pair term reads, so the correction is exact on the lattice
                     const double x = i * dx, r2 = dx * dx * double(i * i + j * j + k * k);
-                    if (r2 > 0 && r2 < h * h) sum += V0 * -kt.gradFactorSq(Scalar(r2)) * r2 * x * x / (r2 + eps);
+                    if (r2 > 0 && r2 < h * h) sum += V0 * -kt.dampedGradFactorSq(Scalar(r2)) * r2 * x * x;
                 }
         return Scalar(sum);
     }
