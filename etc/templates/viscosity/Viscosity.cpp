@@ -14,17 +14,17 @@ using namespace spindrift;
 
 struct SmoothingTerm {
     using Sum = Vec3;
+    static constexpr bool usesKernel = true; // the loop hands each pair W_ij (q.W)
     struct Particle { Vec3 v; Scalar rho; };
-    const KernelTable& kt;
     const Vec3* v;
     const Scalar* rho;
     Scalar m;
     Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
-        sum += (2 * m * kt.WSq(q.r2) / (pi.rho + rho[q.j])) * (v[q.j] - pi.v);
+        sum += (2 * m * q.W / (pi.rho + rho[q.j])) * (v[q.j] - pi.v);
     }
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
-        sum += (q.mass() * kt.WSq(q.r2) / pi.rho) * (q.wall.vViscous[q.j] - pi.v);
+        sum += (q.mass() * q.W / pi.rho) * (q.wall.vViscous[q.j] - pi.v);
     }
 };
 
@@ -38,7 +38,7 @@ public:
         if (!(dt > 0)) return;
         const Scalar scale = c_ / dt;
         auto& a = s.fluid.acceleration();
-        const SmoothingTerm term{s.kernel, s.fluid.velocity().data(), s.fluid.density().data(), s.fluid.particleMass()};
+        const SmoothingTerm term{s.fluid.velocity().data(), s.fluid.density().data(), s.fluid.particleMass()};
         forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& dv) { a[i] += scale * dv; });
     }
 
