@@ -52,7 +52,14 @@ public:
     bool writeDue(double time, long step);
     bool finished(double time) const { return time >= endTime_ - timeTolerance_; }
 
+    // The most steps a run may take (with a fixed deltaT, or at least with maxDeltaT): 10^9, a
+    // day of the smallest case at 100 µs a step; more is a step size typed wrong (1e-320).
+    static constexpr double maxSteps = 1e9;
+
 private:
+    // Refuses a step size that is not a normal number, that is below the resolution of the
+    // run's times (t + deltaT == t: the run never ends) or that takes more than maxSteps steps.
+    void checkStepCount(const Dictionary& controlDict) const;
     // Refuses write times whose names at timePrecision coincide (each would overwrite the one
     // before: the results lost without a word), naming the timePrecision that separates them.
     void checkWriteTimeNames(const Dictionary& controlDict) const;
