@@ -14,6 +14,13 @@ struct SourceLocation {
     int column = 0;     // 1-based, 0 = unknown
 };
 
+// "<file>:<line>:<column>: <severity>: <message> (keyword '<kw>')"; parts that are unknown
+// (empty file, line or column 0) are left out, and so is an empty severity. An InputError's
+// text with severity "error"; a log::warning about an input that is legal but likely wrong
+// with none (the log says "--> Warning: <file>:<line>:<column>: ...").
+std::string locatedMessage(const SourceLocation& where, const std::string& severity, const std::string& message,
+                           const std::string& keyword = "");
+
 // Message format: "<file>:<line>:<column>: error: <what> (keyword '<kw>')"
 class InputError : public std::runtime_error {
 public:
