@@ -157,12 +157,14 @@ void TimeControl::scheduleNextWrite(double time) {
     }
 }
 
-double TimeControl::nextDeltaT(double time, double stableDeltaT) {
+double TimeControl::nextDeltaT(double time, double stableDeltaT, double cap, bool* capped) {
     double dt = deltaT_;
     if (adjustTimeStep_) {
         dt = std::min({stableDeltaT, maxDeltaT_, 1.2 * previousDeltaT_});
         if (!(dt > 0)) dt = previousDeltaT_;
     }
+    if (capped) *capped = cap < dt;
+    dt = std::min(dt, cap);
     auto landOn = [&](double target) {
         const double remaining = target - time;
         if (remaining <= timeTolerance_) return;

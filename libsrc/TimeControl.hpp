@@ -11,6 +11,7 @@
 
 #include "Dictionary.hpp"
 
+#include <limits>
 #include <string>
 
 namespace spindrift {
@@ -44,9 +45,11 @@ public:
     double previousDeltaT() const { return previousDeltaT_; }
 
     // Δt for the next step: 'stableDeltaT' is the stability limit (used when adjustTimeStep),
-    // never more than maxDeltaT nor 1.2× the previous step, shortened to land on the next
-    // write time (adjustableRunTime) and on endTime.
-    double nextDeltaT(double time, double stableDeltaT);
+    // never more than maxDeltaT nor 1.2× the previous step nor 'cap' (a blow-up retry's), then
+    // shortened to land on the next write time (adjustableRunTime) and on endTime. 'capped'
+    // (optional) tells whether the cap was below the step otherwise taken.
+    double nextDeltaT(double time, double stableDeltaT, double cap = std::numeric_limits<double>::infinity(),
+                      bool* capped = nullptr);
 
     // After a step that ended at 'time' (step count 'step'): is this a write time?
     bool writeDue(double time, long step);

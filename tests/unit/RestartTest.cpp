@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 #include <fstream>
+#include <sstream>
 #include <limits>
 #ifdef _OPENMP
 #include <omp.h>
@@ -234,6 +235,79 @@ TEST(BlowUp, ReduceDeltaTRetriesAndFinishes) {
     const RunSummary r = sim.run();
     EXPECT_NEAR(r.endTime, 0.05, 1e-12);
     EXPECT_GT(r.steps, 17) << "some steps were taken with a reduced deltaT";
+}
+
+// After a retry the reduced Δt is kept: held for the hold steps, then growing by at most 1.1×
+// a step (issue 21, item 5: it jumped back from 0.000625 to 0.005). The cap is in the written
+// times' uniform/time, so that a restart from one of them continues with it, bit for bit.
+TEST(BlowUp, ReducedDeltaTIsHeldAfterARetryThenGrowsGradually) {
+    test::TempDir tmp;
+    const fs::path caseDir = tooLargeTimeStep(tmp.path() / "case", "reduceDeltaT");
+    // (writeControl runTime: no step shortened to land on a write time, only the last on endTime)
+    editDictionary(caseDir / "system/controlDict",
+                   {{"logInterval", "1"}, {"writeControl", "runTime"}, {"writeInterval", "0.003"}});
+    log::setQuiet(false);
+    testing::internal::CaptureStdout();
+    {
+        Simulation sim(caseDir);
+        EXPECT_NEAR(sim.run().endTime, 0.05, 1e-12);
+    }
+    const std::string out = testing::internal::GetCapturedStdout();
+    log::setQuiet(true);
+    // the step sizes logged, and each retry's cap
+    std::istringstream lines(out);
+    const std::string retrying = "retrying with deltaT ", stepLine = "Time = ", deltaT = "  deltaT ";
+    int retries = 0, held = 0, grown = 0;
+    double cap = 0, previous = 0;
+    int sinceRetry = -1;
+    for (std::string line; std::getline(lines, line);) {
+        if (const auto at = line.find(retrying); at != std::string::npos) {
+            cap = std::stod(line.substr(at + retrying.size()));
+            EXPECT_NE(line.find("held for 20 steps, then growing by at most 1.1x a step"), std::string::npos) << line;
+            ++retries;
+            sinceRetry = 0;
+            continue;
+        }
+        if (line.rfind(stepLine, 0) != 0 || sinceRetry < 0) continue;
+        const double dt = std::stod(line.substr(line.find(deltaT) + deltaT.size()));
+        const double time = std::stod(line.substr(stepLine.size()));
+        ++sinceRetry;
+        if (time > 0.05 - 2 * cap) { // the last steps, shortened to land on endTime
+            EXPECT_LE(dt, cap * 1.005) << line;
+        } else if (sinceRetry <= 20) { // (3 digits in the log)
+            EXPECT_NEAR(dt, cap, 0.005 * cap) << "step " << sinceRetry << " after the retry to " << cap << ": " << line;
+            ++held;
+        } else {
+            EXPECT_LE(dt, 1.1 * previous * 1.01) << line;
+            grown += dt > previous * 1.01;
+        }
+        previous = dt;
+    }
+    EXPECT_GE(retries, 1) << out;
+    EXPECT_GE(held, 20) << out;
+    EXPECT_GE(grown, 3) << "the cap grows back after the hold: " << out;
+
+    // a time written while the cap holds keeps it; restarting there continues bit for bit
+    const auto times = CaseWriter(caseDir).existingTimes();
+    std::string capped;
+    for (const auto& [value, name] : times)
+        if (capped.empty() && name != "0" && Dictionary::fromFile(caseDir / name / "uniform/time").found("blowUpDeltaTCap"))
+            capped = name;
+    ASSERT_FALSE(capped.empty()) << "no written time holds the cap";
+    const fs::path restarted = tmp.path() / "restarted";
+    copyCaseInput(caseDir, restarted);
+    for (const auto& [value, name] : times)
+        if (value <= std::stod(capped)) fs::copy(caseDir / name, restarted / name, fs::copy_options::recursive);
+    editDictionary(restarted / "system/controlDict", {{"startFrom", "latestTime"}});
+    {
+        Simulation sim(restarted);
+        EXPECT_EQ(CaseWriter::timeName(sim.scene().time), capped);
+        sim.run();
+    }
+    const ParticleSet a = finalState(caseDir), b = finalState(restarted);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(a.position(), b.position()) << "the restart from " << capped << " differs";
+    EXPECT_EQ(a.velocity(), b.velocity());
 }
 
 // The end state is written also when endTime is off the write schedule (issue 21, item 9).
