@@ -371,4 +371,45 @@ TEST(RestartInput, FallsBackToThePreviousCompleteTime) {
     }
 }
 
+// A newest time cut short (fluid.vtp truncated in half: a disk that filled, a copy
+// interrupted) is skipped with a warning naming it; the run restarts from the time before,
+// rewrites the cut time and ends where an uninterrupted run ends, bit for bit (issue 21, item 7).
+TEST(RestartInput, FallsBackFromATruncatedNewestTimeAndContinuesToTheEnd) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path whole = makeCase(tmp.path() / "whole", "symplecticEuler", "wcsph", 0.015);
+    Simulation(whole).run();
+    const fs::path caseDir = makeCase(tmp.path() / "case", "symplecticEuler", "wcsph", 0.01);
+    Simulation(caseDir).run();
+    const fs::path cut = caseDir / "0.01/fluid.vtp";
+    fs::resize_file(cut, fs::file_size(cut) / 2);
+    editDictionary(caseDir / "system/controlDict", {{"startFrom", "latestTime"}, {"endTime", "0.015"}});
+
+    log::setQuiet(false);
+    testing::internal::CaptureStdout();
+    RunSummary r;
+    {
+        Simulation sim(caseDir);
+        EXPECT_DOUBLE_EQ(sim.scene().time, 0.005);
+        r = sim.run();
+    }
+    const std::string out = testing::internal::GetCapturedStdout();
+    log::setQuiet(true);
+    EXPECT_NE(out.find("--> Warning: startFrom latestTime: cannot restart from time 0.01 ("), std::string::npos) << out;
+    EXPECT_NE(out.find("fluid.vtp"), std::string::npos) << out;
+    EXPECT_NE(out.find("); trying the time before"), std::string::npos) << out;
+    EXPECT_NE(out.find("Restarting from time 0.005 "), std::string::npos) << out;
+    EXPECT_NEAR(r.endTime, 0.015, 1e-12);
+    std::vector<std::string> names;
+    for (const auto& [value, name] : CaseWriter(caseDir).existingTimes()) names.push_back(name);
+    EXPECT_EQ(names, (std::vector<std::string>{"0", "0.005", "0.01", "0.015"}));
+    const ParticleSet rewritten = readVtp(cut), reference = readVtp(whole / "0.01/fluid.vtp");
+    EXPECT_EQ(rewritten.position(), reference.position()) << "0.01 is written again, whole";
+    const ParticleSet a = finalState(whole), b = finalState(caseDir);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(a.position(), b.position());
+    EXPECT_EQ(a.velocity(), b.velocity());
+    EXPECT_EQ(a.density(), b.density());
+}
+
 } // namespace
