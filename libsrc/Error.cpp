@@ -1,6 +1,8 @@
 #include "Error.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstddef>
 #include <limits>
 
@@ -18,6 +20,13 @@ std::string locatedMessage(const SourceLocation& where, const std::string& sever
     text += message;
     if (!keyword.empty()) text += " (keyword '" + keyword + "')";
     return text;
+}
+
+std::string describeWriteFailure(const std::string& path, int errorNumber) {
+    if (errorNumber == ENOSPC) return "no space left on device (" + path + ")";
+    if (errorNumber == EDQUOT) return "disk quota exceeded (" + path + ")";
+    if (errorNumber == 0) return "cannot write '" + path + "'";
+    return "cannot write '" + path + "': " + std::strerror(errorNumber);
 }
 
 namespace {

@@ -36,6 +36,11 @@ private:
     std::string message_;
 };
 
+// Why writing 'path' failed, from the errno the failed call left: "no space left on device
+// (<path>)" for ENOSPC (a full disk), "disk quota exceeded (<path>)" for EDQUOT, else
+// "cannot write '<path>': <strerror>" ("cannot write '<path>'" when errno says nothing).
+std::string describeWriteFailure(const std::string& path, int errorNumber);
+
 // Returns the candidate closest to 'word' (edit distance), or "" when nothing is close.
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);
 
