@@ -9,6 +9,9 @@
 // field data "particleMass" (1 value, same type) so that a restart gets the mass back.
 #include "CaseWriter.hpp"
 
+#include "Error.hpp"
+
+#include <cerrno>
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
@@ -18,6 +21,7 @@
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
@@ -142,14 +146,18 @@ bool endsWithClosingTag(const fs::path& file) {
 void writeFileAtomically(const fs::path& file, const std::string& text) {
     fs::path tmp = file;
     tmp += ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw std::runtime_error("cannot write '" + tmp.string() + "'");
-        out << text;
-        out.close();
-        if (!out) throw std::runtime_error("error writing '" + tmp.string() + "'");
-    }
     std::error_code ec;
+    {
+        errno = 0;
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (out) out << text;
+        if (out) out.close();
+        if (!out) {
+            const int error = errno; // (before the remove sets another)
+            fs::remove(tmp, ec);
+            throw std::runtime_error(describeWriteFailure(tmp.string(), error));
+        }
+    }
     fs::rename(tmp, file, ec);
     if (ec) {
         fs::remove(tmp, ec);
@@ -237,6 +245,13 @@ void writeVtp(const fs::path& file, const ParticleSet& set,
     writer->SetCompressorTypeToNone();
     writer->SetHeaderTypeToUInt64(); // arrays above 4 GiB
     const int ok = writer->Write();
+    // A system error (VTK keeps errno as its error code: ENOSPC on a full disk, after removing
+    // the part it wrote) is named as such; VTK's own text says only that the algorithm failed.
+    const unsigned long code = writer->GetErrorCode();
+    if (code == vtkErrorCode::OutOfDiskSpaceError)
+        throw std::runtime_error(describeWriteFailure(file.string(), ENOSPC));
+    if (code > 0 && code < vtkErrorCode::FirstVTKErrorCode)
+        throw std::runtime_error(describeWriteFailure(file.string(), int(code)));
     if (!ok || writer->GetErrorCode() != 0 || errors->any())
         throw std::runtime_error("cannot write '" + file.string() + "'" +
                                  (errors->any() ? ": " + errors->message() : std::string()));
@@ -421,8 +436,10 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
                                  "': " + ec.message());
     fs::remove_all(tmpDir, ec); // stale, from an interrupted run
     if (!fs::create_directory(tmpDir, ec) || ec)
-        throw std::runtime_error("cannot create '" + tmpDir.string() + "': " +
-                                 (ec ? ec.message() : std::string("it exists")));
+        throw std::runtime_error(ec == std::errc::no_space_on_device
+                                     ? describeWriteFailure(tmpDir.string(), ENOSPC) + ": time " + name + " not written"
+                                     : "cannot create '" + tmpDir.string() + "': " +
+                                           (ec ? ec.message() : std::string("it exists")));
 
     std::vector<std::string> wallNames;
     try {
@@ -442,9 +459,11 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
         for (const auto& [relative, content] : extraFiles) {
             const fs::path file = tmpDir / relative;
             fs::create_directories(file.parent_path());
+            errno = 0;
             std::ofstream out(file);
-            out << content;
-            if (!out.flush()) throw std::runtime_error("cannot write '" + file.string() + "'");
+            if (out) out << content;
+            if (out) out.close();
+            if (!out) throw std::runtime_error(describeWriteFailure(file.string(), errno));
         }
         maybeKillDuringWrite();
         if (fs::exists(finalDir, ec)) {
@@ -459,11 +478,17 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
         }
     } catch (const fs::filesystem_error& e) {
         fs::remove_all(tmpDir, ec);
+        if (e.code() == std::errc::no_space_on_device)
+            throw std::runtime_error(describeWriteFailure(e.path1().string(), ENOSPC) + ": time " + name +
+                                     " not written; the times written before it are complete");
         throw std::runtime_error("cannot write time directory '" + finalDir.string() +
                                  "': " + e.what());
-    } catch (...) {
+    } catch (const std::exception& e) {
+        // the part written is removed (on a full disk, the space it took is given back); the
+        // times written before are untouched
         fs::remove_all(tmpDir, ec);
-        throw;
+        throw std::runtime_error(std::string(e.what()) + ": time " + name +
+                                 " not written; the times written before it are complete");
     }
 
     // Update the list of complete times (replace an entry of the same name).

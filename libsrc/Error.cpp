@@ -1,25 +1,39 @@
 #include "Error.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstddef>
 #include <limits>
 
 namespace spindrift {
-namespace {
-
-// "<file>:<line>:<column>: error: <message> (keyword '<kw>')"; parts that are unknown (empty
-// file, line or column 0) are left out.
-std::string formatMessage(const SourceLocation& where, const std::string& message,
-                          const std::string& keyword) {
+std::string locatedMessage(const SourceLocation& where, const std::string& severity, const std::string& message,
+                           const std::string& keyword) {
     std::string prefix = where.file;
     if (where.line > 0) {
         prefix.append(1, ':').append(std::to_string(where.line));
         if (where.column > 0) prefix.append(1, ':').append(std::to_string(where.column));
     }
-    std::string text = prefix.empty() ? "error: " : prefix + ": error: ";
+    std::string text = severity.empty() ? (prefix.empty() ? "" : prefix + ": ")
+                       : prefix.empty()   ? severity + ": "
+                                          : prefix + ": " + severity + ": ";
     text += message;
     if (!keyword.empty()) text += " (keyword '" + keyword + "')";
     return text;
+}
+
+std::string describeWriteFailure(const std::string& path, int errorNumber) {
+    if (errorNumber == ENOSPC) return "no space left on device (" + path + ")";
+    if (errorNumber == EDQUOT) return "disk quota exceeded (" + path + ")";
+    if (errorNumber == 0) return "cannot write '" + path + "'";
+    return "cannot write '" + path + "': " + std::strerror(errorNumber);
+}
+
+namespace {
+
+std::string formatMessage(const SourceLocation& where, const std::string& message,
+                          const std::string& keyword) {
+    return locatedMessage(where, "error", message, keyword);
 }
 
 // Levenshtein distance (insertions, deletions and substitutions all cost 1).

@@ -14,6 +14,13 @@ struct SourceLocation {
     int column = 0;     // 1-based, 0 = unknown
 };
 
+// "<file>:<line>:<column>: <severity>: <message> (keyword '<kw>')"; parts that are unknown
+// (empty file, line or column 0) are left out, and so is an empty severity. An InputError's
+// text with severity "error"; a log::warning about an input that is legal but likely wrong
+// with none (the log says "--> Warning: <file>:<line>:<column>: ...").
+std::string locatedMessage(const SourceLocation& where, const std::string& severity, const std::string& message,
+                           const std::string& keyword = "");
+
 // Message format: "<file>:<line>:<column>: error: <what> (keyword '<kw>')"
 class InputError : public std::runtime_error {
 public:
@@ -28,6 +35,11 @@ private:
     std::string keyword_;
     std::string message_;
 };
+
+// Why writing 'path' failed, from the errno the failed call left: "no space left on device
+// (<path>)" for ENOSPC (a full disk), "disk quota exceeded (<path>)" for EDQUOT, else
+// "cannot write '<path>': <strerror>" ("cannot write '<path>'" when errno says nothing).
+std::string describeWriteFailure(const std::string& path, int errorNumber);
 
 // Returns the candidate closest to 'word' (edit distance), or "" when nothing is close.
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);

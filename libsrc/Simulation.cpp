@@ -453,6 +453,9 @@ std::string Simulation::timeFile() const {
       << "value       " << scene_.time << ";\n"
       << "index       " << scene_.step << ";\n"
       << "deltaT      " << lastDeltaT_ << ";\n";
+    if (std::isfinite(deltaTCap_))
+        s << "blowUpDeltaTCap " << deltaTCap_ << ";\n"
+          << "blowUpHoldSteps " << deltaTHoldSteps_ << ";\n";
     return s.str();
 }
 
@@ -540,6 +543,10 @@ bool Simulation::restartFromLatest() {
     scene_.time = timeDict->get<double>("value");
     scene_.step = timeDict->get<long>("index");
     lastDeltaT_ = timeDict->get<double>("deltaT");
+    // a blow-up retry's cap still in force at that time (absent: none)
+    deltaTCap_ = timeDict->getOrDefault<double>("blowUpDeltaTCap", std::numeric_limits<double>::infinity());
+    deltaTHoldSteps_ = timeDict->getOrDefault<int>("blowUpHoldSteps", 0);
+    if (!(deltaTCap_ > 0)) deltaTCap_ = std::numeric_limits<double>::infinity();
     staticWallsWritten_ = true; // fixed walls were written at the first time
     log::info("Restarting from time " + name + " (step " + std::to_string(scene_.step) + ", " +
               std::to_string(saved->size()) + " particles)");
@@ -805,14 +812,14 @@ RunSummary Simulation::run() {
     // step after the one that caused it, so such a blow-up rolls back two steps.
     struct Snapshot {
         ParticleSet fluid;
-        double time = 0, lastDeltaT = 0, dtTaken = 0;
+        double time = 0, lastDeltaT = 0, dtTaken = 0, deltaTCap = 0;
         long step = 0;
+        int holdSteps = 0;
         bool valid = false;
     };
     Snapshot previous{ParticleSet(s.fluid.name())}, last{ParticleSet(s.fluid.name())};
     int retries = 0, stepsSinceRetry = 0;
     bool keepPrevious = false; // after going back one step, 'previous' is still the step before
-    double dtCap = std::numeric_limits<double>::infinity();
     // Step lines: every logInterval-th step (automatic: from the number of steps the run is
     // estimated to take), and always the first and the last step of the run, the steps after a
     // retry, those whose pressure solver did not converge and the step a signal stops at.
@@ -821,7 +828,8 @@ RunSummary Simulation::run() {
     log::info("\nStarting time loop\n");
     while (!time_->finished(s.time)) {
         if (sortEvery_ > 0 && s.step % sortEvery_ == 0) resortFluid(s);
-        const double dt = std::min(time_->nextDeltaT(s.time, stableDeltaT()), dtCap);
+        bool capped = false;
+        const double dt = time_->nextDeltaT(s.time, stableDeltaT(), deltaTCap_, &capped);
         if (!keepPrevious) std::swap(previous, last);
         keepPrevious = false;
         last.fluid.copyDataFrom(s.fluid);
@@ -829,6 +837,8 @@ RunSummary Simulation::run() {
         last.step = s.step;
         last.lastDeltaT = lastDeltaT_;
         last.dtTaken = dt;
+        last.deltaTCap = deltaTCap_;
+        last.holdSteps = deltaTHoldSteps_;
         last.valid = true;
 
         integrator_->step(s, Scalar(dt), [&](double t) { evaluate(t, Scalar(dt)); });
@@ -858,14 +868,20 @@ RunSummary Simulation::run() {
                 for (const auto& n : removed) names += " " + n;
                 if (!removed.empty()) log::warning("removed the times written after " + CaseWriter::timeName(good.time) + ":" + names);
             };
+            deltaTCap_ = good.deltaTCap;
+            deltaTHoldSteps_ = good.holdSteps;
             if (reduceDeltaTOnBlowUp_ && retries < blowUpRetries_) {
                 removeAbandonedTimes();
                 ++retries;
                 stepsSinceRetry = 0;
-                dtCap = 0.5 * good.dtTaken;
-                time_->setPreviousDeltaT(dtCap);
-                log::warning(blowUp + "; going back to time " + CaseWriter::timeName(good.time) +
-                             " and retrying with deltaT " + std::to_string(dtCap));
+                deltaTCap_ = 0.5 * good.dtTaken;
+                deltaTHoldSteps_ = blowUpHoldSteps;
+                time_->setPreviousDeltaT(deltaTCap_);
+                std::ostringstream m;
+                m << std::setprecision(6) << "; going back to time " << CaseWriter::timeName(good.time)
+                  << " and retrying with deltaT " << deltaTCap_ << ", held for " << blowUpHoldSteps
+                  << " steps, then growing by at most " << blowUpCapGrowth << "x a step";
+                log::warning(blowUp + m.str());
                 logNextStep = true;
                 setFatalSignalContext();
                 continue;
@@ -878,7 +894,18 @@ RunSummary Simulation::run() {
         }
         lastDeltaT_ = dt;
         if (++stepsSinceRetry >= 2) retries = 0; // the retried steps are known good
-        dtCap *= 1.2;                             // and Δt may grow back gradually
+        // a blow-up's cap: held, then grown gradually, dropped once Δt stays below it
+        if (std::isfinite(deltaTCap_) && (deltaTHoldSteps_ == 0 || --deltaTHoldSteps_ == 0)) {
+            if (capped) {
+                deltaTCap_ *= blowUpCapGrowth;
+            } else {
+                std::ostringstream m;
+                m << std::setprecision(6) << "deltaT " << dt << " at time " << s.time
+                  << " is below the cap of the last blow-up retry (" << deltaTCap_ << "): no longer capped";
+                log::info(m.str());
+                deltaTCap_ = std::numeric_limits<double>::infinity();
+            }
+        }
         setFatalSignalContext();
 
         const DensityError err = densityError(s);

@@ -8,6 +8,7 @@
 #include "ModelRegistry.hpp"
 #include "TimeControl.hpp"
 
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -109,6 +110,14 @@ private:
     bool runTimeModifiable_ = true;
     std::filesystem::file_time_type controlDictTime_;
     double lastDeltaT_ = 0;
+    // After a blow-up retry (onBlowUp reduceDeltaT) Δt is capped at half the step that blew up:
+    // held there for blowUpHoldSteps good steps, then the cap grows by blowUpCapGrowth a step
+    // until Δt no longer reaches it (as OpenFOAM limits Δt's growth). Kept in uniform/time while
+    // it applies, so a restart continues with it.
+    static constexpr int blowUpHoldSteps = 20;
+    static constexpr double blowUpCapGrowth = 1.1;
+    double deltaTCap_ = std::numeric_limits<double>::infinity();
+    int deltaTHoldSteps_ = 0;
     std::vector<Scalar> initialDepths_; // of the fluid particles, where their block starts hydrostatic
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up

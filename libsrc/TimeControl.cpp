@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -47,7 +48,48 @@ void TimeControl::read(const Dictionary& d) {
         throw InputError(d.locationOf("writeInterval"),
                          "writeInterval must be a whole number of steps with writeControl timeStep", "writeInterval");
     timeTolerance_ = 1e-9 * std::max({std::abs(endTime_), std::abs(startTime_), 1e-3});
+    checkStepCount(d);
     checkWriteTimeNames(d);
+}
+
+void TimeControl::checkStepCount(const Dictionary& d) const {
+    const auto text = [](double x) {
+        std::ostringstream s;
+        s << std::setprecision(6) << x;
+        return s.str();
+    };
+    // a denormal step (deltaT 1e-320) is no step size: 1.5/1e-320 overflows, and it vanishes
+    // when added to any time but 0
+    if (!std::isnormal(deltaT_))
+        throw InputError(d.locationOf("deltaT"),
+                         "deltaT " + text(deltaT_) + " is not a usable step size (a normal positive number, at least " +
+                             text(std::numeric_limits<double>::min()) + ")",
+                         "deltaT");
+    // the step that bounds the count: deltaT when fixed, maxDeltaT (the largest a step may be)
+    // when adjusted
+    const std::string keyword = adjustTimeStep_ ? "maxDeltaT" : "deltaT";
+    const double step = adjustTimeStep_ ? maxDeltaT_ : deltaT_;
+    // (maxDeltaT left at its default of 1 s: the run itself is too long)
+    const std::string at = d.found(keyword) ? keyword : "endTime";
+    const auto where = [&] { return d.locationOf(at); };
+    // the time the run ends at is the largest it adds a step to: a step below its resolution
+    // leaves the time where it is, and the run never ends
+    const double largest = std::max(std::abs(startTime_), std::abs(endTime_));
+    if (largest + step == largest)
+        throw InputError(where(),
+                         keyword + " " + text(step) + " is below the resolution of the time " +
+                             text(largest) + " in double precision (about " +
+                             text(std::nextafter(largest, std::numeric_limits<double>::infinity()) - largest) +
+                             "): the time would not advance and the run would never end",
+                         at);
+    const double steps = (endTime_ - startTime_) / step;
+    if (!(steps <= maxSteps))
+        throw InputError(where(),
+                         "the run from startTime " + text(startTime_) + " to endTime " + text(endTime_) + " at " +
+                             keyword + " " + text(step) + " takes " + (adjustTimeStep_ ? "at least " : "") +
+                             text(steps) + " steps, more than the " + text(maxSteps) +
+                             " a run may take; use a larger " + keyword + " or a shorter run",
+                         at);
 }
 
 namespace {
@@ -115,12 +157,14 @@ void TimeControl::scheduleNextWrite(double time) {
     }
 }
 
-double TimeControl::nextDeltaT(double time, double stableDeltaT) {
+double TimeControl::nextDeltaT(double time, double stableDeltaT, double cap, bool* capped) {
     double dt = deltaT_;
     if (adjustTimeStep_) {
         dt = std::min({stableDeltaT, maxDeltaT_, 1.2 * previousDeltaT_});
         if (!(dt > 0)) dt = previousDeltaT_;
     }
+    if (capped) *capped = cap < dt;
+    dt = std::min(dt, cap);
     auto landOn = [&](double target) {
         const double remaining = target - time;
         if (remaining <= timeTolerance_) return;

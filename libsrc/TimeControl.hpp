@@ -11,6 +11,7 @@
 
 #include "Dictionary.hpp"
 
+#include <limits>
 #include <string>
 
 namespace spindrift {
@@ -44,15 +45,24 @@ public:
     double previousDeltaT() const { return previousDeltaT_; }
 
     // Δt for the next step: 'stableDeltaT' is the stability limit (used when adjustTimeStep),
-    // never more than maxDeltaT nor 1.2× the previous step, shortened to land on the next
-    // write time (adjustableRunTime) and on endTime.
-    double nextDeltaT(double time, double stableDeltaT);
+    // never more than maxDeltaT nor 1.2× the previous step nor 'cap' (a blow-up retry's), then
+    // shortened to land on the next write time (adjustableRunTime) and on endTime. 'capped'
+    // (optional) tells whether the cap was below the step otherwise taken.
+    double nextDeltaT(double time, double stableDeltaT, double cap = std::numeric_limits<double>::infinity(),
+                      bool* capped = nullptr);
 
     // After a step that ended at 'time' (step count 'step'): is this a write time?
     bool writeDue(double time, long step);
     bool finished(double time) const { return time >= endTime_ - timeTolerance_; }
 
+    // The most steps a run may take (with a fixed deltaT, or at least with maxDeltaT): 10^9, a
+    // day of the smallest case at 100 µs a step; more is a step size typed wrong (1e-320).
+    static constexpr double maxSteps = 1e9;
+
 private:
+    // Refuses a step size that is not a normal number, that is below the resolution of the
+    // run's times (t + deltaT == t: the run never ends) or that takes more than maxSteps steps.
+    void checkStepCount(const Dictionary& controlDict) const;
     // Refuses write times whose names at timePrecision coincide (each would overwrite the one
     // before: the results lost without a word), naming the timePrecision that separates them.
     void checkWriteTimeNames(const Dictionary& controlDict) const;

@@ -12,3 +12,9 @@ add_test(NAME Reliability.OneSolverPerCase
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/caseLock.sh $<TARGET_FILE:spindriftSolver> ${PROJECT_SOURCE_DIR}/tutorials)
 set_tests_properties(Reliability.OneSolverPerCase
   PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR};OMP_NUM_THREADS=1" TIMEOUT 300)
+# a full disk (a small tmpfs; skipped where one cannot be mounted)
+add_test(NAME Reliability.FullDisk
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/fullDisk.sh $<TARGET_FILE:spindriftSolver> ${PROJECT_SOURCE_DIR}/tutorials)
+set_tests_properties(Reliability.FullDisk
+  PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR};OMP_NUM_THREADS=1" TIMEOUT 300
+  SKIP_RETURN_CODE 77)

@@ -84,6 +84,38 @@ TEST(Probes, ShepardInterpolationIsExactForConstantsAndAccurateForLinearFields) 
     EXPECT_TRUE(std::isnan(r[0][8]));
 }
 
+TEST(Probes, ALocationOutsideTheCaseIsWarnedOfOnceAtSetUpAndSamplesNan) {
+    TestScene sc(10, 10); // fluid particles in [0, 0.1]², support radius 0.026
+    // inside; 0.4 m above the block (a length in the wrong units); above the block but within
+    // the support of its top row (a gauge over the free surface: no warning)
+    auto probes = sc.create("p", "type probes; fields (pressure);\n"
+                                 "probeLocations ((0.05 0.05 0) (0.05 0.5 0) (0.05 0.11 0));");
+    testing::internal::CaptureStdout();
+    probes->start(sc.s, 0);
+    const std::string setUp = testing::internal::GetCapturedStdout();
+    EXPECT_NE(setUp.find("--> Warning: controlDict.functions.p:2:1: probes 'p': location (0.05 0.5) lies outside "
+                         "the case"),
+              std::string::npos)
+        << setUp;
+    EXPECT_NE(setUp.find("(keyword 'probeLocations')"), std::string::npos) << setUp;
+    EXPECT_EQ(setUp.find("(0.05 0.11)"), std::string::npos) << setUp;
+    EXPECT_EQ(setUp.find("(0.05 0.05)"), std::string::npos) << setUp;
+    testing::internal::CaptureStdout();
+    for (double t : {0.001, 0.002}) {
+        sc.s.time = t;
+        probes->execute(sc.s, false);
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStdout().find("arning"), std::string::npos) << "warned once, at set-up";
+    const auto r = sc.rows("p");
+    ASSERT_EQ(r.size(), 2u);
+    for (const auto& row : r) {
+        ASSERT_EQ(row.size(), 4u); // the column is kept (the layout follows probeLocations)
+        EXPECT_TRUE(std::isfinite(row[1]));
+        EXPECT_TRUE(std::isnan(row[2]));
+        EXPECT_TRUE(std::isfinite(row[3]));
+    }
+}
+
 TEST(Probes, UnknownFieldIsAnInputErrorNamingTheCaseFields) {
     TestScene sc(5, 5);
     auto probes = sc.create("p", "type probes; fields (pressure vorticity); probeLocations ((0 0 0));");

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 #include <fstream>
+#include <sstream>
 #include <limits>
 #ifdef _OPENMP
 #include <omp.h>
@@ -236,6 +237,79 @@ TEST(BlowUp, ReduceDeltaTRetriesAndFinishes) {
     EXPECT_GT(r.steps, 17) << "some steps were taken with a reduced deltaT";
 }
 
+// After a retry the reduced Δt is kept: held for the hold steps, then growing by at most 1.1×
+// a step (issue 21, item 5: it jumped back from 0.000625 to 0.005). The cap is in the written
+// times' uniform/time, so that a restart from one of them continues with it, bit for bit.
+TEST(BlowUp, ReducedDeltaTIsHeldAfterARetryThenGrowsGradually) {
+    test::TempDir tmp;
+    const fs::path caseDir = tooLargeTimeStep(tmp.path() / "case", "reduceDeltaT");
+    // (writeControl runTime: no step shortened to land on a write time, only the last on endTime)
+    editDictionary(caseDir / "system/controlDict",
+                   {{"logInterval", "1"}, {"writeControl", "runTime"}, {"writeInterval", "0.003"}});
+    log::setQuiet(false);
+    testing::internal::CaptureStdout();
+    {
+        Simulation sim(caseDir);
+        EXPECT_NEAR(sim.run().endTime, 0.05, 1e-12);
+    }
+    const std::string out = testing::internal::GetCapturedStdout();
+    log::setQuiet(true);
+    // the step sizes logged, and each retry's cap
+    std::istringstream lines(out);
+    const std::string retrying = "retrying with deltaT ", stepLine = "Time = ", deltaT = "  deltaT ";
+    int retries = 0, held = 0, grown = 0;
+    double cap = 0, previous = 0;
+    int sinceRetry = -1;
+    for (std::string line; std::getline(lines, line);) {
+        if (const auto at = line.find(retrying); at != std::string::npos) {
+            cap = std::stod(line.substr(at + retrying.size()));
+            EXPECT_NE(line.find("held for 20 steps, then growing by at most 1.1x a step"), std::string::npos) << line;
+            ++retries;
+            sinceRetry = 0;
+            continue;
+        }
+        if (line.rfind(stepLine, 0) != 0 || sinceRetry < 0) continue;
+        const double dt = std::stod(line.substr(line.find(deltaT) + deltaT.size()));
+        const double time = std::stod(line.substr(stepLine.size()));
+        ++sinceRetry;
+        if (time > 0.05 - 2 * cap) { // the last steps, shortened to land on endTime
+            EXPECT_LE(dt, cap * 1.005) << line;
+        } else if (sinceRetry <= 20) { // (3 digits in the log)
+            EXPECT_NEAR(dt, cap, 0.005 * cap) << "step " << sinceRetry << " after the retry to " << cap << ": " << line;
+            ++held;
+        } else {
+            EXPECT_LE(dt, 1.1 * previous * 1.01) << line;
+            grown += dt > previous * 1.01;
+        }
+        previous = dt;
+    }
+    EXPECT_GE(retries, 1) << out;
+    EXPECT_GE(held, 20) << out;
+    EXPECT_GE(grown, 3) << "the cap grows back after the hold: " << out;
+
+    // a time written while the cap holds keeps it; restarting there continues bit for bit
+    const auto times = CaseWriter(caseDir).existingTimes();
+    std::string capped;
+    for (const auto& [value, name] : times)
+        if (capped.empty() && name != "0" && Dictionary::fromFile(caseDir / name / "uniform/time").found("blowUpDeltaTCap"))
+            capped = name;
+    ASSERT_FALSE(capped.empty()) << "no written time holds the cap";
+    const fs::path restarted = tmp.path() / "restarted";
+    copyCaseInput(caseDir, restarted);
+    for (const auto& [value, name] : times)
+        if (value <= std::stod(capped)) fs::copy(caseDir / name, restarted / name, fs::copy_options::recursive);
+    editDictionary(restarted / "system/controlDict", {{"startFrom", "latestTime"}});
+    {
+        Simulation sim(restarted);
+        EXPECT_EQ(CaseWriter::timeName(sim.scene().time), capped);
+        sim.run();
+    }
+    const ParticleSet a = finalState(caseDir), b = finalState(restarted);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(a.position(), b.position()) << "the restart from " << capped << " differs";
+    EXPECT_EQ(a.velocity(), b.velocity());
+}
+
 // The end state is written also when endTime is off the write schedule (issue 21, item 9).
 TEST(EndState, WrittenOffTheWriteSchedule) {
     log::setQuiet(true);
@@ -295,6 +369,47 @@ TEST(RestartInput, FallsBackToThePreviousCompleteTime) {
                   std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("(keyword 'startFrom')"), std::string::npos) << e.what();
     }
+}
+
+// A newest time cut short (fluid.vtp truncated in half: a disk that filled, a copy
+// interrupted) is skipped with a warning naming it; the run restarts from the time before,
+// rewrites the cut time and ends where an uninterrupted run ends, bit for bit (issue 21, item 7).
+TEST(RestartInput, FallsBackFromATruncatedNewestTimeAndContinuesToTheEnd) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path whole = makeCase(tmp.path() / "whole", "symplecticEuler", "wcsph", 0.015);
+    Simulation(whole).run();
+    const fs::path caseDir = makeCase(tmp.path() / "case", "symplecticEuler", "wcsph", 0.01);
+    Simulation(caseDir).run();
+    const fs::path cut = caseDir / "0.01/fluid.vtp";
+    fs::resize_file(cut, fs::file_size(cut) / 2);
+    editDictionary(caseDir / "system/controlDict", {{"startFrom", "latestTime"}, {"endTime", "0.015"}});
+
+    log::setQuiet(false);
+    testing::internal::CaptureStdout();
+    RunSummary r;
+    {
+        Simulation sim(caseDir);
+        EXPECT_DOUBLE_EQ(sim.scene().time, 0.005);
+        r = sim.run();
+    }
+    const std::string out = testing::internal::GetCapturedStdout();
+    log::setQuiet(true);
+    EXPECT_NE(out.find("--> Warning: startFrom latestTime: cannot restart from time 0.01 ("), std::string::npos) << out;
+    EXPECT_NE(out.find("fluid.vtp"), std::string::npos) << out;
+    EXPECT_NE(out.find("); trying the time before"), std::string::npos) << out;
+    EXPECT_NE(out.find("Restarting from time 0.005 "), std::string::npos) << out;
+    EXPECT_NEAR(r.endTime, 0.015, 1e-12);
+    std::vector<std::string> names;
+    for (const auto& [value, name] : CaseWriter(caseDir).existingTimes()) names.push_back(name);
+    EXPECT_EQ(names, (std::vector<std::string>{"0", "0.005", "0.01", "0.015"}));
+    const ParticleSet rewritten = readVtp(cut), reference = readVtp(whole / "0.01/fluid.vtp");
+    EXPECT_EQ(rewritten.position(), reference.position()) << "0.01 is written again, whole";
+    const ParticleSet a = finalState(whole), b = finalState(caseDir);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(a.position(), b.position());
+    EXPECT_EQ(a.velocity(), b.velocity());
+    EXPECT_EQ(a.density(), b.density());
 }
 
 } // namespace

@@ -337,7 +337,7 @@ std::vector<std::string> CaseDictionaries::changedFiles() const {
 // ---------------------------------------------------------------------------------------------
 
 ProcessResult runProcess(const std::vector<std::string>& argv, const fs::path& workDir, const fs::path& logFile,
-                         const std::vector<std::string>& env, double timeoutSeconds) {
+                         const std::vector<std::string>& env, double timeoutSeconds, int timeoutSignal) {
     // environment: ours, with 'env' replacing or adding entries
     std::vector<std::string> envStrings;
     for (char** e = environ; *e; ++e) {
@@ -382,7 +382,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const fs::path& w
         if (r < 0 && errno != EINTR) break;
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (timeoutSeconds > 0 && elapsed > timeoutSeconds && !terminated) {
-            kill(-pid, SIGTERM);
+            kill(-pid, timeoutSignal);
             terminated = true;
             result.timedOut = true;
             termTime = std::chrono::steady_clock::now();

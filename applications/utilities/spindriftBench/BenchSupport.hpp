@@ -20,6 +20,7 @@
 #include "Dictionary.hpp"
 
 #include <boost/program_options.hpp>
+#include <csignal>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -107,8 +108,9 @@ const Dictionary* findPath(const Dictionary& dict, const std::string& path); // 
 void setDictPath(Dictionary& dict, const std::string& path, const Dictionary& replacement);
 
 // Runs argv in 'workDir' with stdout and stderr to 'logFile', extra environment 'env'
-// (NAME=value), in its own process group; after 'timeoutSeconds' (0 = none) the group is
-// terminated. Returns the exit status (128 + signal if killed) and whether it timed out.
+// (NAME=value), in its own process group; after 'timeoutSeconds' (0 = none) the group is sent
+// 'timeoutSignal' (SIGTERM, then SIGKILL 5 s later; SIGKILL: at once, as the soak's kills).
+// Returns the exit status (128 + signal if killed) and whether it timed out.
 struct ProcessResult {
     int status = -1;
     bool timedOut = false;
@@ -116,7 +118,7 @@ struct ProcessResult {
 };
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::filesystem::path& workDir,
                          const std::filesystem::path& logFile, const std::vector<std::string>& env,
-                         double timeoutSeconds);
+                         double timeoutSeconds, int timeoutSignal = SIGTERM);
 
 // The solver's final line "End: N steps to time T in W s wall time (...), K times written,
 // max density error E%[, average iterations A]".

@@ -24,7 +24,11 @@
 // Pareto front — is written into the case's own dictionaries (system/sphSchemes, and any other
 // the combination sets), each under a comment citing its bench.csv row; the file it replaces is
 // kept as <file>.orig. No combination meeting the bound: the case is left alone, exit status 1.
+//
+// -soak N (Soak.hpp): instead of the table, N random kills (SIGKILL) and restarts of the case,
+// each run to the end and compared bit for bit with an uninterrupted run.
 #include "BenchSupport.hpp"
+#include "Soak.hpp"
 #include "Log.hpp"
 
 #include <algorithm>
@@ -215,7 +219,12 @@ int main(int argc, char** argv) {
         ("pick", po::value<std::string>(),
          "\"FIGURE<=VALUE\": write the fastest combination meeting the bound into the case's dictionaries "
          "(the replaced files kept as .orig)")
-        ("list", "list the combinations and stop");
+        ("list", "list the combinations and stop")
+        ("soak", po::value<int>(),
+         "N: run the case once uninterrupted, then N times killed (SIGKILL) at a random moment, restarted "
+         "(startFrom latestTime) and run to the end, each end state compared bit for bit; with at most one "
+         "-combination (overrides for every run)")
+        ("seed", po::value<std::uint64_t>()->default_value(1), "-soak: seed of the random kill moments");
     po::variables_map vm;
     if (const auto status = parseCommandLine(argc, argv, options, "spindriftBench", vm)) return *status;
     if (!vm.count("case")) {
@@ -260,6 +269,22 @@ int main(int argc, char** argv) {
         const char* envDir = std::getenv("SPINDRIFT_DIR");
         const std::string spindriftDir = envDir ? envDir : SPINDRIFT_SOURCE_DIR;
         const bool hasAllrun = fs::exists(caseDir / "Allrun");
+        if (vm.count("soak")) {
+            SoakSettings soak;
+            soak.count = vm["soak"].as<int>();
+            if (soak.count < 1) throw std::runtime_error("-soak: the number of runs must be at least 1");
+            if (combos.size() != 1) throw std::runtime_error("-soak takes at most one -combination (no -vary)");
+            soak.seed = vm["seed"].as<std::uint64_t>();
+            soak.caseDir = caseDir;
+            soak.output = output;
+            soak.solver = solver;
+            soak.overrides = quickOverrides;
+            soak.overrides.insert(soak.overrides.end(), combos.front().begin(), combos.front().end());
+            soak.presets = presets;
+            soak.threads = threads;
+            soak.env = {"OMP_NUM_THREADS=" + std::to_string(threads), "SPINDRIFT_DIR=" + spindriftDir};
+            return runSoak(soak);
+        }
         fs::create_directories(output / "runs");
 
         std::cout << "spindriftBench: " << caseName << ", " << combos.size() << " combination(s)"

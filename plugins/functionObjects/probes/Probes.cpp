@@ -5,6 +5,11 @@
 // (truncated support) unbiased for a constant field; for wall pressure place the probe about
 // 1.5 h inside the fluid from the wall, as DualSPHysics does, and compare with the value
 // expected there. A probe with no fluid particle within the support radius writes nan.
+// A location farther than the support radius from every particle of the case at the start
+// (fluid and walls: outside the case's bounding box grown by h) is most likely a typo or a
+// length in other units: it is warned about once at set-up, naming the point, the box and the
+// probeLocations line (as OpenFOAM's probes warn of a location in no cell), and kept, its
+// columns holding nan until fluid comes within h of it (a splash above an open container).
 //
 //   probes
 //   {
@@ -18,6 +23,7 @@
 // Output postProcessing/<name>/<startTime>/<name>.dat: one row per sample, columns field-major
 // ("p(0.1,0.045)", ..., "Ux(0.1,0.045)", "Uy(...)", ..., "rho(...)").
 #include "FunctionObjectSupport.hpp"
+#include "Log.hpp"
 #include "Plugin.hpp"
 
 namespace {
@@ -32,8 +38,9 @@ public:
         fieldsWhere_ = c.dict.locationOf("fields");
         if (fieldNames_.empty()) throw InputError(fieldsWhere_, "'fields' lists no field", "fields");
         locations_ = c.dict.get<std::vector<Vec3>>("probeLocations");
+        locationsWhere_ = c.dict.locationOf("probeLocations");
         if (locations_.empty())
-            throw InputError(c.dict.locationOf("probeLocations"), "'probeLocations' lists no point", "probeLocations");
+            throw InputError(locationsWhere_, "'probeLocations' lists no point", "probeLocations");
         if (dim_ == 2)
             for (auto& p : locations_) p[2] = 0;
     }
@@ -67,6 +74,7 @@ public:
             }
         file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
         control_.start(startTime);
+        warnOfLocationsOutside(s);
     }
 
     void execute(const Scene& s, bool writeTime) override {
@@ -104,6 +112,36 @@ public:
     }
 
 private:
+    void warnOfLocationsOutside(const Scene& s) const {
+        Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::max()), hi = -lo;
+        const auto extend = [&](const std::vector<Vec3>& x) {
+            for (const auto& p : x) {
+                lo = lo.cwiseMin(p);
+                hi = hi.cwiseMax(p);
+            }
+        };
+        extend(s.fluid.position());
+        for (const auto& w : s.walls) extend(w.particles.position());
+        if (!(lo[0] <= hi[0])) return; // no particle at all (refused before a run)
+        const Scalar h = s.physics.supportRadius;
+        const auto point = [&](const Vec3& p) {
+            std::ostringstream o;
+            o << "(" << p[0] << " " << p[1];
+            if (dim_ == 3) o << " " << p[2];
+            return o.str() + ")";
+        };
+        for (const auto& p : locations_) {
+            bool outside = false;
+            for (int a = 0; a < dim_; ++a) outside = outside || !(p[a] >= lo[a] - h && p[a] <= hi[a] + h);
+            if (!outside) continue;
+            std::ostringstream m;
+            m << "probes '" << name_ << "': location " << point(p) << " lies outside the case (its particles span "
+              << point(lo) << " to " << point(hi) << ", support radius " << h
+              << "): no particle is near it; its columns hold nan until fluid comes within " << h << " of it";
+            log::warning(locatedMessage(locationsWhere_, "", m.str(), "probeLocations"));
+        }
+    }
+
     struct Field {
         std::string name, label;
         bool vector = false;
@@ -113,7 +151,7 @@ private:
     SampleControl control_;
     int dim_;
     std::vector<std::string> fieldNames_;
-    SourceLocation fieldsWhere_;
+    SourceLocation fieldsWhere_, locationsWhere_;
     std::vector<Vec3> locations_;
     std::vector<Field> fields_;
     SampleGrid grid_;
