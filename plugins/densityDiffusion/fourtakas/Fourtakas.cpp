@@ -26,7 +26,7 @@ struct FourtakasTerm {
     Vec3 hydrostatic; // −ρ0 g / c0²: ρ^H_ji = hydrostatic · r_ij
     Particle particle(std::size_t i) const { return rho[i]; }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const {
-        sum += ((rhoi + hydrostatic.dot(q.r)) * invRho[q.j] - 1) * q.r2 * q.dampedGradFactor;
+        sum += (rhoi - rho[q.j] + hydrostatic.dot(q.r)) * invRho[q.j] * q.r2 * q.dampedGradFactor;
     }
 };
 

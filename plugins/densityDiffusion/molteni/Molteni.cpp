@@ -22,7 +22,7 @@ struct MolteniTerm {
     const Scalar* invRho; // 1/ρ_j, taken once per particle (a division per pair less)
     Particle particle(std::size_t i) const { return rho[i]; }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const {
-        sum += (rhoi * invRho[q.j] - 1) * q.r2 * q.dampedGradFactor;
+        sum += (rhoi - rho[q.j]) * invRho[q.j] * q.r2 * q.dampedGradFactor;
     }
 };
 
