@@ -17,6 +17,21 @@ public:
     virtual ~DensityDiffusion() = default;
     virtual void initialise(Scene&) {}
     virtual void densityRate(const Scene& scene, std::vector<Scalar>& rate) const = 0;
+
+protected:
+    // 1/ρ_j of every fluid particle, taken once a call: the diffusion terms divide by ρ_j, and a
+    // multiplication per pair is cheaper than a division. (ρ_i − ρ_j)·(1/ρ_j) stays exactly zero
+    // for a uniform density.
+    const Scalar* inverseDensity(const Scene& s) const {
+        const auto& rho = s.fluid.density();
+        inverseDensity_.resize(rho.size());
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < rho.size(); ++i) inverseDensity_[i] = 1 / rho[i];
+        return inverseDensity_.data();
+    }
+
+private:
+    mutable std::vector<Scalar> inverseDensity_; // scratch of inverseDensity()
 };
 
 } // namespace spindrift

@@ -185,14 +185,14 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
             out(i, pi, sum);
         }, wallCount > 0 ? NeighbourSearch::PairWork::FluidAndWall : NeighbourSearch::PairWork::Fluid);
     };
-    const auto lookUp = [&](std::uint32_t, const Vec3& rij, Scalar r2) { return detail::pairKernel<Term>(kt, rij, r2); };
     if (cached)
         pass([&](std::uint32_t k, const Vec3& rij, Scalar r2) {
             detail::PairKernel w = detail::pairKernel<Term, false>(kt, rij, r2);
             w.gradW = cached[k];
             return w;
         });
-    else pass(lookUp);
+    else
+        pass([&](std::uint32_t, const Vec3& rij, Scalar r2) { return detail::pairKernel<Term>(kt, rij, r2); });
 }
 
 // out(i, particle_i, Σ) for every fluid particle, Σ = Σ_j term.cached(particle_i, j, ∇W_ij) over

@@ -47,11 +47,12 @@ struct AntuonoTerm {
         Vec3 gradient;
     };
     const Scalar* rho;
+    const Scalar* invRho; // 1/ρ_j (DensityDiffusion::inverseDensity)
     const Vec3* gradient;
     Particle particle(std::size_t i) const { return {rho[i], gradient[i]}; }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
         const Scalar bracket = pi.rho - rho[q.j] - Scalar(0.5) * (pi.gradient + gradient[q.j]).dot(q.r);
-        sum += bracket / rho[q.j] * q.r2 * q.dampedGradFactor;
+        sum += bracket * invRho[q.j] * q.r2 * q.dampedGradFactor;
     }
 };
 
@@ -86,7 +87,7 @@ public:
             gradient[i] = g;
         });
         const Scalar scale = delta_ * h * s.constants.soundSpeed * m;
-        continuityDensityRate(s, rate, AntuonoTerm{rho, gradient.data()}, scale);
+        continuityDensityRate(s, rate, AntuonoTerm{rho, inverseDensity(s), gradient.data()}, scale);
     }
 
 private:

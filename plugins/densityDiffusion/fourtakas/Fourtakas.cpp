@@ -46,18 +46,13 @@ public:
         const SceneConstants& c = s.constants;
         const Scalar h = c.supportRadius;
         const Scalar scale = delta_ * h * c.soundSpeed * s.fluid.particleMass();
-        const auto& rho = s.fluid.density();
-        invRho_.resize(rho.size());
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < rho.size(); ++i) invRho_[i] = 1 / rho[i];
-        const FourtakasTerm term{rho.data(), invRho_.data(),
+        const FourtakasTerm term{s.fluid.density().data(), inverseDensity(s),
                                  Vec3(-c.rho0 * s.physics.gravity / (c.soundSpeed * c.soundSpeed))};
         continuityDensityRate(s, rate, term, scale);
     }
 
 private:
     Scalar delta_;
-    mutable std::vector<Scalar> invRho_; // scratch
 };
 } // namespace
 

@@ -35,16 +35,11 @@ public:
     void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
         const Scalar h = s.constants.supportRadius;
         const Scalar scale = delta_ * h * s.constants.soundSpeed * s.fluid.particleMass();
-        const auto& rho = s.fluid.density();
-        invRho_.resize(rho.size());
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < rho.size(); ++i) invRho_[i] = 1 / rho[i];
-        continuityDensityRate(s, rate, MolteniTerm{rho.data(), invRho_.data()}, scale);
+        continuityDensityRate(s, rate, MolteniTerm{s.fluid.density().data(), inverseDensity(s)}, scale);
     }
 
 private:
     Scalar delta_;
-    mutable std::vector<Scalar> invRho_; // scratch
 };
 } // namespace
 
