@@ -36,6 +36,14 @@ private:
     std::string message_;
 };
 
+// The time loop stopped at a state it refuses to go on from (a blow-up: a particle beyond the
+// domain, too fast, a density error too large, a non-finite field), after writing the last good
+// state; the message names it and what to try.
+class BlowUpError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 // Why writing 'path' failed, from the errno the failed call left: "no space left on device
 // (<path>)" for ENOSPC (a full disk), "disk quota exceeded (<path>)" for EDQUOT, else
 // "cannot write '<path>': <strerror>" ("cannot write '<path>'" when errno says nothing).

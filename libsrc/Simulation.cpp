@@ -631,8 +631,8 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
 #pragma omp parallel for schedule(static) reduction(| : any)
     for (std::size_t i = 0; i < x.size(); ++i) {
         const Scalar sum = x[i].sum() + v[i].sum() + a[i].sum() + rho[i] + p[i];
-        int bad = !(sum - sum == 0) | (v[i].squaredNorm() > speed2) | ((rho[i] - rho0) / rho0 > worstDensity);
-        for (int d = 0; d < 3; ++d) bad |= bounded[d] & ((x[i][d] < blowUpMin_[d]) | (x[i][d] > blowUpMax_[d]));
+        int bad = int(!(sum - sum == 0)) | int(v[i].squaredNorm() > speed2) | int((rho[i] - rho0) / rho0 > worstDensity);
+        for (int d = 0; d < 3; ++d) bad |= int(bounded[d]) & (int(x[i][d] < blowUpMin_[d]) | int(x[i][d] > blowUpMax_[d]));
         any |= bad;
     }
     densityOnly = false;
@@ -888,7 +888,7 @@ RunSummary Simulation::run() {
             }
             write(); // the last good state, to look at in ParaView (and to restart from)
             removeAbandonedTimes();
-            throw std::runtime_error(blowUp + ". The last good state (time " + CaseWriter::timeName(good.time) +
+            throw BlowUpError(blowUp + ". The last good state (time " + CaseWriter::timeName(good.time) +
                                      ") is written to " + (case_.dir / CaseWriter::timeName(good.time)).string() +
                                      "; try a smaller deltaT or maxCo, or onBlowUp reduceDeltaT;");
         }

@@ -57,7 +57,6 @@ using namespace spindrift::bench;
 
 namespace {
 
-constexpr double g = 9.81;
 constexpr double supportFactor = 2.6;
 
 std::string num(double v) {
