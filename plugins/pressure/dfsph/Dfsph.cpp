@@ -58,10 +58,13 @@ class Dfsph final : public PressureModel {
 public:
     explicit Dfsph(const ModelContext& c)
         : rho0_(c.physics.rho0), warmStart_(c.dict.getOrDefault<double>("warmStart", 0.5)),
+          omega_(c.dict.getOrDefault<double>("omega", 1.0)),
           divergenceSolve_(c.dict.getOrDefault<bool>("divergenceSolve", true)),
           checkPositions_(c.dict.getOrDefault<bool>("checkPositions", false)) {
         if (warmStart_ < 0 || warmStart_ > 1)
             throw InputError(c.dict.locationOf("warmStart"), "warmStart must be in [0, 1]", "warmStart");
+        if (!(omega_ > 0 && omega_ <= 1))
+            throw InputError(c.dict.locationOf("omega"), "omega (the Jacobi relaxation) must be in (0, 1]", "omega");
         if (c.solution) {
             maxDivergenceError_ = c.solution->getOrDefault<double>("maxDivergenceError", maxDivergenceError_);
             maxDivergenceIterations_ = c.solution->getOrDefault<int>("maxDivergenceIterations", maxDivergenceIterations_);
@@ -124,7 +127,7 @@ public:
         for (std::size_t i = 0; i < n; ++i) velocity_[i] = v[i];
         rate_.resize(n);
         kappaOverRho_.resize(n);
-        const Scalar invDt = 1 / dt, invDt2 = invDt * invDt;
+        const Scalar invDt = 1 / dt, invDt2 = invDt * invDt, relaxPerDt = omega_ * invDt, relaxPerDt2 = omega_ * invDt2;
         const Scalar* alphaOverRho = alphaOverRho_->data();
         const auto& ff = s.search.fluidNeighbours();
 
@@ -152,7 +155,7 @@ public:
                     const bool full = ff.count(i) + s.search.wallNeighbourCount(i) >= minNeighbours_;
                     rate = full ? std::max(rate, Scalar(0)) : Scalar(0);
                     rate_[i] = rate;
-                    kappaOverRho_[i] = rate * alphaOverRho[i] * invDt;
+                    kappaOverRho_[i] = rate * alphaOverRho[i] * relaxPerDt;
                 });
                 const double error = dt * deterministicSum(n, [&](std::size_t i) { return rate_[i]; }) / (double(n) * rho0_);
                 if (divergenceIterations >= maxDivergenceIterations_ ||
@@ -183,7 +186,7 @@ public:
         warmStartVelocities(s, k, dt, invDt2);
         const auto stiffness = [&](std::size_t i, Scalar predicted) {
             rate_[i] = predicted;
-            kappaOverRho_[i] = std::max(predicted - rho0_, Scalar(0)) * alphaOverRho[i] * invDt2;
+            kappaOverRho_[i] = std::max(predicted - rho0_, Scalar(0)) * alphaOverRho[i] * relaxPerDt2;
         };
         int iterations = 0, checks = 0;
         CompressionError err;
@@ -335,7 +338,7 @@ private:
         if (w > 0) applyStiffness(s, dt, nullptr);
     }
 
-    Scalar rho0_, warmStart_;
+    Scalar rho0_, warmStart_, omega_;
     bool divergenceSolve_, checkPositions_;
     static constexpr int maxPositionChecks = 10;
     Scalar maxDivergenceError_ = Scalar(0.001);
