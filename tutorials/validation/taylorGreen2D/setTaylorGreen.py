@@ -6,7 +6,8 @@ p = -rho0 U^2/4 (cos(4 pi x/L) + cos(4 pi y/L)) and the density the Tait equatio
 system/sphSchemes gives it, rho0 (p/B + 1)^(1/gamma), B = c0^2 rho0/gamma: a density integrated in
 time (pressure 'density continuity;') starts in balance with the flow instead of sending out
 pressure waves of amplitude rho0 U^2/4 (a velocity error of U^2/(4 c0)); a summed density is
-computed from the positions anyway. Needs VTK: run it with pvpython (or a python3 with the vtk
+computed from the positions anyway. An incompressible solver (no soundSpeed: pcisph, dfsph,
+iisph, pbf, relaxedPbf) gets rho0 and the pressure, which those that warm-start begin from. Needs VTK: run it with pvpython (or a python3 with the vtk
 module).
 
     setTaylorGreen.py [U]
@@ -36,7 +37,7 @@ def equation_of_state():
     c0 = re.search(r"\bsoundSpeed\s+([^;\s]+)\s*;", pressure)
     gamma = re.search(r"\bgamma\s+([^;\s]+)\s*;", pressure)
     if c0 is None:
-        sys.exit("setTaylorGreen: give the pressure model's soundSpeed in system/sphSchemes")
+        return None, None  # an incompressible solver
     return float(c0.group(1)), float(gamma.group(1)) if gamma else 7.0
 
 
@@ -61,10 +62,13 @@ def main():
     set_array(data, "velocity", velocity)
     rho0 = sv.fluid_properties()["rho0"]
     c0, gamma = equation_of_state()
-    B = c0 ** 2 * rho0 / gamma
     p = -rho0 * U ** 2 / 4 * (np.cos(2 * k * x[:, 0]) + np.cos(2 * k * x[:, 1]))
     set_array(data, "pressure", p)
-    set_array(data, "density", rho0 * (p / B + 1) ** (1 / gamma))
+    if c0 is None:
+        set_array(data, "density", np.full(len(x), rho0))
+    else:
+        B = c0 ** 2 * rho0 / gamma
+        set_array(data, "density", rho0 * (p / B + 1) ** (1 / gamma))
     writer = vtkXMLPolyDataWriter()
     writer.SetFileName(path)
     writer.SetInputData(data)
@@ -73,8 +77,9 @@ def main():
     writer.SetHeaderTypeToUInt64()
     if writer.Write() != 1:
         sys.exit("cannot write " + path)
-    print("setTaylorGreen: U = %g, L = %g, pressure and density (c0 = %g, gamma = %g) on %d particles of %s"
-          % (U, L, c0, gamma, len(x), path))
+    eos = "c0 = %g, gamma = %g" % (c0, gamma) if c0 is not None else "incompressible: rho0"
+    print("setTaylorGreen: U = %g, L = %g, pressure and density (%s) on %d particles of %s"
+          % (U, L, eos, len(x), path))
 
 
 if __name__ == "__main__":
