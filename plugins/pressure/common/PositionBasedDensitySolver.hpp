@@ -26,6 +26,9 @@
 // constraint error by 1 − (1 + ω) μ/(1 + ε/D0), and μ, the mode's eigenvalue of J Jᵀ over D0,
 // reaches 2.1 (2D) and 2.8 (3D) for the cubic spline at h = 2 Δx, 2.9 and 4.9 at h = 2.6 Δx,
 // so with ε = 0 the shortest modes grow (|·| > 1); the density clamp damps what remains.
+// Where the kernel's largest lattice gain g (= μ/2) exceeds 1.8 (Wendland C2 at 4Δx in 2D: 2.84,
+// where pbf's Taylor–Green vortex blew up in 16 steps), (1 + ω) is scaled by 1.8/g
+// (jacobiRelaxationScale, LatticePrototype.hpp: the rule of every Jacobi-type solver here).
 // Wall particles take part in the density and in the correction with the volume V_b = M_b/ρ0
 // of the masses the boundary model gives them. The multiplier is kept between steps in the
 // field pbfLambda as λ/Δt² (= −p/ρ0, independent of Δt); the pressure field shows
@@ -102,6 +105,8 @@ public:
         d0_ = volume_ * volume_ * Scalar(proto.gradSumSquared + proto.sumGradSquared);
         if (!(d0_ > 0)) throw std::runtime_error(name_ + ": the prototype particle has no neighbours");
         epsilon_ = options_.epsilon * d0_;
+        relaxation_ = (1 + options_.omega) *
+                      jacobiRelaxationScale(latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension));
         wDeltaQ_ = s.kernel.W(options_.sCorrDeltaQ * s.kernel.supportRadius());
         lambda_ = &s.fluid.addScalar("pbfLambda", {false, true});
         lambdaStart_ = &s.fluid.addScalar("pbfLambdaStart", {false, false});
@@ -110,6 +115,9 @@ public:
         msg << name_ << ": omega " << options_.omega << ", warm start " << options_.warmStart << ", density "
  << (options_.clampDensity ? "clamped to rho0 from below" : "not clamped")
             << ", epsilon " << epsilon_ << " (= " << options_.epsilon << " D0), s_corr k " << options_.sCorrK;
+        if (relaxation_ < 1 + options_.omega)
+            msg << "; the kernel's largest lattice correction gain is above " << maxJacobiCorrectionGain
+                << ": the position update relaxed by " << relaxation_ << " (1 + omega " << 1 + options_.omega << ")";
         log::info(msg.str());
     }
 
@@ -148,7 +156,7 @@ public:
             applyCorrection(Scalar(1));
         }
 
-        const Scalar relax = 1 + options_.omega;
+        const Scalar relax = relaxation_;
         int iterations = 0;
         CompressionError err;
         for (;;) {
@@ -299,6 +307,7 @@ private:
     std::string name_;
     Scalar rho0_;
     Scalar volume_ = 0, d0_ = 0, epsilon_ = 0, wDeltaQ_ = 0;
+    Scalar relaxation_ = 1; // (1 + omega) × jacobiRelaxationScale (LatticePrototype.hpp)
     std::vector<Scalar>* lambda_ = nullptr;      // field pbfLambda: λ/Δt² of the last step
     std::vector<Scalar>* lambdaStart_ = nullptr; // field pbfLambdaStart: warm-start source
     double lastSolveTime_ = std::numeric_limits<double>::quiet_NaN();

@@ -34,21 +34,27 @@
 // the solver passes (and the viscosity, through Scene::fluidPairGradients) only stream it;
 // the walls' velocities do not change within a step, so their terms need only Σ_b M_b ∇W_ib and
 // Σ_b M_b v_b·∇W_ib per particle, also computed once.
+// Both solves' κ are relaxed by ω (omega, default 1: the paper's Jacobi), scaled by 1.8/g where
+// the kernel's largest lattice correction gain g exceeds 1.8 (jacobiRelaxationScale,
+// LatticePrototype.hpp; Wendland C2 at 4Δx in 2D: g = 2.84, where the Colagrossi dam break blew
+// up at its corner at H/40, the max speed doubling every step from the first).
 // Both solves warm-start from half of the last step's κ, scaled to this step's Δt (fields
 // dfsphKappa, dfsphKappaV hold κ Δt² and κ_v Δt, as SPlisHSPlasH: restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
 // Euler gives v_{n+1} = v*, x_{n+1} = x_n + Δt v* (ResultKind::velocityChange). Wall particles b
 // have the masses M_b the boundary model gives them.
 //
-//   pressure { type dfsph; warmStart 0.5; divergenceSolve yes; checkPositions no; }
+//   pressure { type dfsph; omega 1; warmStart 0.5; divergenceSolve yes; checkPositions no; }
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average; minIterations 2;
 //                           maxIterations 100; maxDivergenceError 0.001; maxDivergenceIterations 100; }
 #include "DensityAndGradientSums.hpp"
 #include "IterativeSolverControls.hpp"
+#include "LatticePrototype.hpp"
 #include "Log.hpp"
 #include "Plugin.hpp"
 #include "PairLoop.hpp"
 #include "PressureModel.hpp"
 
+#include <sstream>
 #include <stdexcept>
 
 namespace {
@@ -91,6 +97,14 @@ public:
         wallGradient_ = &s.fluid.addVector("dfsphWallGradient", scratch);
         wallRate_ = &s.fluid.addScalar("dfsphWallRate", scratch);
         minNeighbours_ = s.physics.dimension == 3 ? 20 : 7;
+        relaxation_ = omega_ * jacobiRelaxationScale(
+                                   latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension));
+        if (relaxation_ < omega_) {
+            std::ostringstream m;
+            m << "dfsph: the kernel's largest lattice correction gain is above " << maxJacobiCorrectionGain << ": both solves"
+              << " relaxed by " << relaxation_ << " (omega " << omega_ << ")";
+            log::info(m.str());
+        }
     }
 
     ResultKind result() const override { return ResultKind::velocityChange; }
@@ -127,7 +141,7 @@ public:
         for (std::size_t i = 0; i < n; ++i) velocity_[i] = v[i];
         rate_.resize(n);
         kappaOverRho_.resize(n);
-        const Scalar invDt = 1 / dt, invDt2 = invDt * invDt, relaxPerDt = omega_ * invDt, relaxPerDt2 = omega_ * invDt2;
+        const Scalar invDt = 1 / dt, invDt2 = invDt * invDt, relaxPerDt = relaxation_ * invDt, relaxPerDt2 = relaxation_ * invDt2;
         const Scalar* alphaOverRho = alphaOverRho_->data();
         const auto& ff = s.search.fluidNeighbours();
 
@@ -339,6 +353,7 @@ private:
     }
 
     Scalar rho0_, warmStart_, omega_;
+    Scalar relaxation_ = 1; // omega × jacobiRelaxationScale (LatticePrototype.hpp)
     bool divergenceSolve_, checkPositions_;
     static constexpr int maxPositionChecks = 10;
     Scalar maxDivergenceError_ = Scalar(0.001);

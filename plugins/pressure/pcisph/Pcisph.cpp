@@ -72,7 +72,7 @@ public:
         if (!(prototype_.sumGradSquared > 0))
             throw std::runtime_error("pcisph: the prototype particle has no neighbours (supportRadius too small)");
         const double gain = latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension);
-        deltaScale_ = gain > maxCorrectionGain ? maxCorrectionGain / gain : 1.0;
+        deltaScale_ = jacobiRelaxationScale(gain);
         std::ostringstream m;
         m << "pcisph: prototype particle with " << prototype_.neighbours << " lattice neighbours, "
           << "sum grad W . grad W = " << prototype_.sumGradSquared << ", |sum grad W|^2 = " << prototype_.gradSumSquared
@@ -160,7 +160,6 @@ private:
     LatticeGradientSums prototype_;
     // δ is scaled down where a lattice wave's correction would exceed this gain (latticeMaxCorrectionGain):
     // each correction then shrinks every wave's error at least by the factor 0.8
-    static constexpr double maxCorrectionGain = 1.8;
     double deltaScale_ = 1;
     Scalar delta_ = 0, deltaDt_ = -1;
     std::vector<Vec3> nonPressure_, pressureAcc_, predicted_;
