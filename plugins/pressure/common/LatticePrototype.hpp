@@ -88,7 +88,8 @@ inline double latticeMaxCorrectionGain(const KernelTable& kernel, double dx, int
 // where dfsph and iisph blew up at the Colagrossi dam break's corner, the max speed doubling every
 // step from the first, and pbf in the Taylor–Green vortex). The solvers' own relaxations are
 // written for a single particle's response (g = 1); ω = 1 in dfsph is twice pcisph's δ, whose
-// free-surface clamp (ρ* ≥ ρ0 only) keeps it stable in practice below the bound.
+// free-surface clamp (ρ* ≥ ρ0 only) keeps it stable in practice below the bound. docs/MODELS.md
+// §jacobiRelaxation.
 inline constexpr double maxJacobiCorrectionGain = 1.8;
 inline double jacobiRelaxationScale(double gain) {
     return gain > maxJacobiCorrectionGain ? maxJacobiCorrectionGain / gain : 1.0;
