@@ -158,8 +158,8 @@ private:
     Scalar warmStart_; // the fraction of the last step's pressure the iteration starts from
     IterativeSolverControls controls_;
     LatticeGradientSums prototype_;
-    // δ is scaled down where a lattice wave's correction would exceed this gain (latticeMaxCorrectionGain):
-    // each correction then shrinks every wave's error at least by the factor 0.8
+    // δ is scaled down where a lattice wave's correction would exceed the gain 1.8
+    // (jacobiRelaxationScale): each correction then shrinks every wave's error at least by 0.8
     double deltaScale_ = 1;
     Scalar delta_ = 0, deltaDt_ = -1;
     std::vector<Vec3> nonPressure_, pressureAcc_, predicted_;
