@@ -67,9 +67,17 @@ void write(const fs::path& file, const std::string& text) {
 }
 
 // A case directory of its own in /dev/shm (or $TMPDIR) with the fixed files; emptied of
-// results before each input.
+// results before each input, removed when the fuzzer exits.
+struct CaseDirectory {
+    fs::path path;
+    ~CaseDirectory() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
 const fs::path& caseDirectory() {
-    static const fs::path dir = [] {
+    static const CaseDirectory dir{[] {
         const fs::path shm = fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
         const fs::path d = shm / ("spindriftFuzzSchemes." + std::to_string(::getpid()));
         fs::create_directories(d / "system");
@@ -78,8 +86,8 @@ const fs::path& caseDirectory() {
         write(d / "constant" / "fluidProperties", fluidProperties);
         write(d / "constant" / "geometry", geometry);
         return d;
-    }();
-    return dir;
+    }()};
+    return dir.path;
 }
 
 void check(bool ok) {
