@@ -5,8 +5,8 @@
 // whose positions are finite and whose particle count the estimate (which guards memory) did
 // not underestimate — never a crash, a leak, a hang or another exception.
 #include "Case.hpp"
+#include "FuzzSupport.hpp"
 #include "Geometry.hpp"
-#include "Log.hpp"
 #include "Motion.hpp"
 
 #include <cmath>
@@ -15,20 +15,17 @@
 #include <string>
 
 using namespace spindrift;
+using fuzz::check;
 
 namespace {
 // at most this many particles sampled per input (the solver asks for -force far above that;
 // the fuzzer stays fast)
 constexpr double maxParticles = 2e4;
 
-void check(bool ok) {
-    if (!ok) __builtin_trap(); // a broken invariant: the fuzzer reports the input
-}
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    static const bool quiet = (log::setQuiet(true), true);
-    (void)quiet;
+    fuzz::quietLog();
     const std::string text(reinterpret_cast<const char*>(data), size);
     const std::size_t split = text.find('\0');
     if (split == std::string::npos) return 0;

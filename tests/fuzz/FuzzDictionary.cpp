@@ -1,7 +1,7 @@
 // libFuzzer target: the dictionary parser must reject any input with an InputError — never
 // crash, leak, hang or throw anything else. Typed lookups run on whatever parses.
 #include "Dictionary.hpp"
-#include "Log.hpp"
+#include "FuzzSupport.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -44,8 +44,7 @@ void roundTrip(const Dictionary& d) {
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    static const bool quiet = (log::setQuiet(true), true);
-    (void)quiet;
+    fuzz::quietLog();
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
         const Dictionary d = Dictionary::fromString(text, "<fuzz>");

@@ -10,7 +10,7 @@
 // steps whose particles are all finite — never a crash, a leak, a hang, a sanitizer report or
 // another exception.
 #include "Error.hpp"
-#include "Log.hpp"
+#include "FuzzSupport.hpp"
 #include "Simulation.hpp"
 
 #include <cmath>
@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 using namespace spindrift;
+using fuzz::check;
 namespace fs = std::filesystem;
 
 namespace {
@@ -90,15 +91,10 @@ const fs::path& caseDirectory() {
     return dir.path;
 }
 
-void check(bool ok) {
-    if (!ok) __builtin_trap(); // a broken invariant: the fuzzer reports the input
-}
-
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    static const bool quiet = (log::setQuiet(true), true);
-    (void)quiet;
+    fuzz::quietLog();
     const fs::path& dir = caseDirectory();
     for (const auto& entry : fs::directory_iterator(dir))
         if (entry.path().filename() != "system" && entry.path().filename() != "constant") fs::remove_all(entry.path());

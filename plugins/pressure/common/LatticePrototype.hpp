@@ -6,9 +6,12 @@
 #pragma once
 
 #include "KernelTable.hpp"
+#include "Log.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace spindrift {
@@ -93,6 +96,20 @@ inline double latticeMaxCorrectionGain(const KernelTable& kernel, double dx, int
 inline constexpr double maxJacobiCorrectionGain = 1.8;
 inline double jacobiRelaxationScale(double gain) {
     return gain > maxJacobiCorrectionGain ? maxJacobiCorrectionGain / gain : 1.0;
+}
+
+// A solver's relaxation 'relaxation' times jacobiRelaxationScale for this kernel on the lattice of
+// spacing dx; says so in the log when the scale applies ("<what> relaxed by ...").
+inline double scaledJacobiRelaxation(const KernelTable& kernel, double dx, int dimension, double relaxation,
+                                     const std::string& what) {
+    const double scaled = relaxation * jacobiRelaxationScale(latticeMaxCorrectionGain(kernel, dx, dimension));
+    if (scaled < relaxation) {
+        std::ostringstream m;
+        m << what << " relaxed by " << scaled << " instead of " << relaxation
+          << ": the kernel's largest lattice correction gain is above " << maxJacobiCorrectionGain;
+        log::info(m.str());
+    }
+    return scaled;
 }
 
 // PCISPH's δ = −1 / (β (−Σ∇W_ij·Σ∇W_ij − Σ ∇W_ij·∇W_ij)), β = 2 Δt² m² / ρ0² (eq. 8), so that

@@ -105,8 +105,8 @@ public:
         d0_ = volume_ * volume_ * Scalar(proto.gradSumSquared + proto.sumGradSquared);
         if (!(d0_ > 0)) throw std::runtime_error(name_ + ": the prototype particle has no neighbours");
         epsilon_ = options_.epsilon * d0_;
-        relaxation_ = (1 + options_.omega) *
-                      jacobiRelaxationScale(latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension));
+        relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension,
+                                                    1 + options_.omega, name_ + ": the position update (1 + omega)"));
         wDeltaQ_ = s.kernel.W(options_.sCorrDeltaQ * s.kernel.supportRadius());
         lambda_ = &s.fluid.addScalar("pbfLambda", {false, true});
         lambdaStart_ = &s.fluid.addScalar("pbfLambdaStart", {false, false});
@@ -115,9 +115,6 @@ public:
         msg << name_ << ": omega " << options_.omega << ", warm start " << options_.warmStart << ", density "
  << (options_.clampDensity ? "clamped to rho0 from below" : "not clamped")
             << ", epsilon " << epsilon_ << " (= " << options_.epsilon << " D0), s_corr k " << options_.sCorrK;
-        if (relaxation_ < 1 + options_.omega)
-            msg << "; the kernel's largest lattice correction gain is above " << maxJacobiCorrectionGain
-                << ": the position update relaxed by " << relaxation_ << " (1 + omega " << 1 + options_.omega << ")";
         log::info(msg.str());
     }
 

@@ -54,7 +54,6 @@
 #include "PairLoop.hpp"
 #include "PressureModel.hpp"
 
-#include <sstream>
 #include <stdexcept>
 
 namespace {
@@ -97,14 +96,8 @@ public:
         wallGradient_ = &s.fluid.addVector("dfsphWallGradient", scratch);
         wallRate_ = &s.fluid.addScalar("dfsphWallRate", scratch);
         minNeighbours_ = s.physics.dimension == 3 ? 20 : 7;
-        relaxation_ = omega_ * jacobiRelaxationScale(
-                                   latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension));
-        if (relaxation_ < omega_) {
-            std::ostringstream m;
-            m << "dfsph: the kernel's largest lattice correction gain is above " << maxJacobiCorrectionGain << ": both solves"
-              << " relaxed by " << relaxation_ << " (omega " << omega_ << ")";
-            log::info(m.str());
-        }
+        relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
+                                                    "dfsph: both solves"));
     }
 
     ResultKind result() const override { return ResultKind::velocityChange; }

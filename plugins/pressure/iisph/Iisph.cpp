@@ -52,12 +52,10 @@
 #include "DensityAndGradientSums.hpp"
 #include "IterativeSolverControls.hpp"
 #include "LatticePrototype.hpp"
-#include "Log.hpp"
 #include "Plugin.hpp"
 #include "PairLoop.hpp"
 #include "PressureModel.hpp"
 
-#include <sstream>
 #include <stdexcept>
 
 namespace {
@@ -112,14 +110,8 @@ public:
     }
 
     void initialise(Scene& s) override {
-        relaxation_ = omega_ * jacobiRelaxationScale(
-                                   latticeMaxCorrectionGain(s.kernel, s.physics.particleSpacing, s.physics.dimension));
-        if (relaxation_ < omega_) {
-            std::ostringstream m;
-            m << "iisph: the kernel's largest lattice correction gain is above " << maxJacobiCorrectionGain << ": the Jacobi iteration"
-              << " relaxed by " << relaxation_ << " (omega " << omega_ << ")";
-            log::info(m.str());
-        }
+        relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
+                                                    "iisph: the Jacobi iteration"));
     }
 
     void computeDensity(Scene& s) override {
