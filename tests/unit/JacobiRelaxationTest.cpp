@@ -13,14 +13,20 @@
 #include <gtest/gtest.h>
 #include <fstream>
 #include <regex>
+#include <utility>
+#include <vector>
 
 using namespace spindrift;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string replaced(const std::string& text, const std::string& pattern, const std::string& by) {
-    return std::regex_replace(text, std::regex(pattern), by, std::regex_constants::format_first_only);
+// Replaces the first match of each pattern in 'file', in order.
+void edit(const fs::path& file, const std::vector<std::pair<std::string, std::string>>& replacements) {
+    std::string text = test::readFile(file);
+    for (const auto& [pattern, by] : replacements)
+        text = std::regex_replace(text, std::regex(pattern), by, std::regex_constants::format_first_only);
+    std::ofstream(file) << text;
 }
 
 class JacobiRelaxation : public ::testing::TestWithParam<std::string> {};
@@ -30,25 +36,16 @@ TEST_P(JacobiRelaxation, AWideKernelSettlesAColumnWithoutAGrowingWave) {
     test::TempDir tmp;
     const fs::path dir = tmp.path() / "tank";
     copyCaseInput(fs::path(SPINDRIFT_SOURCE_DIR) / "tutorials/hydrostaticTank2D", dir);
-    std::string schemes = test::readFile(dir / "system/sphSchemes");
-    schemes = replaced(schemes, "\npressure\\s*\\{[^}]*\\}", "\npressure\n{\n    type " + GetParam() + ";\n}");
-    schemes = replaced(schemes, "(kernel\\s*\\{\\s*type\\s+)\\w+;", "$1wendlandC2;");
-    schemes = replaced(schemes, "\nviscosity\\s*\\{[^}]*\\}", "\nviscosity\n{\n    type artificial; alpha 0.1; soundSpeed 25;\n}");
-    std::ofstream(dir / "system/sphSchemes") << schemes;
-    std::string fluid = test::readFile(dir / "constant/fluidProperties");
-    fluid = replaced(fluid, "supportRadius\\s+[^;]+;", "supportRadius 4;");
-    fluid = replaced(fluid, "particleSpacing\\s+[^;]+;", "particleSpacing 0.0075;");
-    std::ofstream(dir / "constant/fluidProperties") << fluid;
-    std::string geometry = test::readFile(dir / "constant/geometry");
-    geometry = replaced(geometry, "layers\\s+3;", "layers 4;");
-    // whole numbers of the spacing 0.0075: 26 × 40 particles in a tank 54 spacings high
-    geometry = replaced(geometry, "\\(0\\.2 0\\.3 0\\)", "(0.195 0.3 0)");
-    geometry = replaced(geometry, "\\(0\\.2 0\\.4 0\\)", "(0.195 0.405 0)");
-    std::ofstream(dir / "constant/geometry") << geometry;
-    std::string control = test::readFile(dir / "system/controlDict");
-    control = replaced(control, "\nendTime[^;]*;", "\nendTime 0.05;");
-    control = replaced(control, "\nwriteInterval[^;]*;", "\nwriteInterval 1;");
-    std::ofstream(dir / "system/controlDict") << control;
+    edit(dir / "system/sphSchemes",
+         {{"\npressure\\s*\\{[^}]*\\}", "\npressure\n{\n    type " + GetParam() + ";\n}"},
+          {"(kernel\\s*\\{\\s*type\\s+)\\w+;", "$1wendlandC2;"},
+          {"\nviscosity\\s*\\{[^}]*\\}", "\nviscosity\n{\n    type artificial; alpha 0.1; soundSpeed 25;\n}"}});
+    edit(dir / "constant/fluidProperties",
+         {{"supportRadius\\s+[^;]+;", "supportRadius 4;"}, {"particleSpacing\\s+[^;]+;", "particleSpacing 0.0075;"}});
+    // 4 wall layers; whole numbers of the spacing 0.0075: 26 × 40 particles in a tank 54 spacings high
+    edit(dir / "constant/geometry",
+         {{"layers\\s+3;", "layers 4;"}, {"\\(0\\.2 0\\.3 0\\)", "(0.195 0.3 0)"}, {"\\(0\\.2 0\\.4 0\\)", "(0.195 0.405 0)"}});
+    edit(dir / "system/controlDict", {{"\nendTime[^;]*;", "\nendTime 0.05;"}, {"\nwriteInterval[^;]*;", "\nwriteInterval 1;"}});
 
     Simulation sim(dir);
     const RunSummary r = sim.run(); // a blow-up throws
