@@ -50,9 +50,19 @@ protected:
         evaluate(s.time + dt);
         haveAcceleration_ = true;
     }
+    // How kickDriftKick's forces at x_{n+1} see the velocity.
+    enum class EvaluationVelocity {
+        halfStep,  // v_{n+½} (leapfrog)
+        predicted, // v* = v_n + Δt a_n (velocity Verlet)
+    };
+    // The kick–drift–kick step on the carried a_n: v_{n+½} = v_n + ½Δt a_n; the integrated fields
+    // advanced with v_{n+½} at x_n; x_{n+1} = x_n + Δt v_{n+½}; a_{n+1} evaluated at x_{n+1} with
+    // the velocity `seen`; v_{n+1} = v_{n+½} + ½Δt a_{n+1}.
+    void kickDriftKick(Scene& s, Scalar dt, const Evaluate& evaluate, EvaluationVelocity seen);
 
 private:
     bool haveAcceleration_ = false;
+    std::vector<Vec3> halfStepVelocity_; // v_{n+½} while the forces see v* (scratch within a step)
 };
 
 // f(i) for every fluid particle, in parallel: the integrators' kick and drift loops.

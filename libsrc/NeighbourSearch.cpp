@@ -311,11 +311,7 @@ void NeighbourSearch::buildLists(const std::vector<Vec3>& fluid) {
         });
     }
     countWallPairs();
-    int threads = 1;
-#ifdef _OPENMP
-    threads = omp_get_max_threads();
-#endif
-    balanceWork(threads);
+    balanceWork();
 }
 
 void NeighbourSearch::countWallPairs() {
@@ -361,7 +357,11 @@ void NeighbourSearch::ThreadSpeeds::update(int threads) {
     clocks.assign(threads, ThreadClock{});
 }
 
-void NeighbourSearch::balanceWork(int threads) {
+void NeighbourSearch::balanceWork() {
+    int threads = 1;
+#ifdef _OPENMP
+    threads = omp_get_max_threads();
+#endif
     // thread t starts where the work (pairWork) reaches the share of the threads before it,
     // each thread's share in proportion to its speed
     passSpeeds_.update(threads);
@@ -451,11 +451,7 @@ void NeighbourSearch::permute(const std::vector<Index>& order) {
     fluidGrid_.relabel(newIndexOf);
     if (builtAhead_) permuteVector(aheadPoints_, order);
     countWallPairs();
-    int threads = 1;
-#ifdef _OPENMP
-    threads = omp_get_max_threads();
-#endif
-    balanceWork(threads);
+    balanceWork();
 }
 
 NeighbourList NeighbourSearch::wallWallList(std::size_t k, std::size_t l) const {

@@ -481,7 +481,7 @@ private:
     }
     void buildLists(const std::vector<Vec3>& fluid);
     void countWallPairs();
-    void balanceWork(int threads);
+    void balanceWork(); // over the threads the next passes run on
     // The next chunk of [first, last), the range of thread owner, in region 'region'.
     std::pair<std::size_t, std::size_t> claimChunk(int owner, std::size_t first, std::size_t last,
                                                    std::uint32_t region) const {

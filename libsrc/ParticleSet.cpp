@@ -18,8 +18,13 @@ void ParticleSet::resize(std::size_t n) {
     for (auto& f : vectors_) f->data.resize(n, Vec3::Zero());
 }
 
-std::vector<Scalar>& ParticleSet::addScalar(const std::string& name, FieldOptions options) {
-    for (auto& f : scalars_)
+namespace {
+// The field of that name, its options widened by a second request (written or restart data if
+// either asks, scratch only if both do); a new field of zeros if there is none.
+template <class Field, class Value>
+std::vector<Value>& addField(std::vector<std::unique_ptr<Field>>& fields, const std::string& name,
+                             FieldOptions options, std::size_t size, const Value& zero) {
+    for (auto& f : fields)
         if (f->name == name) {
             f->options.output |= options.output;
             f->options.restart |= options.restart;
@@ -27,23 +32,18 @@ std::vector<Scalar>& ParticleSet::addScalar(const std::string& name, FieldOption
             f->options.undefined |= options.undefined;
             return f->data;
         }
-    scalars_.push_back(std::make_unique<ScalarField>(ScalarField{name, options, {}}));
-    scalars_.back()->data.assign(size(), Scalar(0));
-    return scalars_.back()->data;
+    fields.push_back(std::make_unique<Field>(Field{name, options, {}}));
+    fields.back()->data.assign(size, zero);
+    return fields.back()->data;
+}
+} // namespace
+
+std::vector<Scalar>& ParticleSet::addScalar(const std::string& name, FieldOptions options) {
+    return addField(scalars_, name, options, size(), Scalar(0));
 }
 
 std::vector<Vec3>& ParticleSet::addVector(const std::string& name, FieldOptions options) {
-    for (auto& f : vectors_)
-        if (f->name == name) {
-            f->options.output |= options.output;
-            f->options.restart |= options.restart;
-            f->options.scratch &= options.scratch;
-            f->options.undefined |= options.undefined;
-            return f->data;
-        }
-    vectors_.push_back(std::make_unique<VectorField>(VectorField{name, options, {}}));
-    vectors_.back()->data.assign(size(), Vec3::Zero());
-    return vectors_.back()->data;
+    return addField(vectors_, name, options, size(), Vec3(Vec3::Zero()));
 }
 
 std::vector<Scalar>* ParticleSet::findScalar(const std::string& name) {

@@ -21,6 +21,18 @@ public:
 };
 
 class ViscosityModel : public ForceModel {};
+
+// What a viscous pair term reads of particle i before its pairs (PairLoop.hpp): its velocity and
+// density. The artificial, laminar and XSPH terms derive from it.
+struct VelocityDensityTerm {
+    struct Particle {
+        Vec3 v;
+        Scalar rho;
+    };
+    const Vec3* v;
+    const Scalar* rho;
+    Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
+};
 class ExtraForce : public ForceModel {};
 
 } // namespace spindrift

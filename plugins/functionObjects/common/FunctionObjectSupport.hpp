@@ -1,5 +1,7 @@
 // Spindrift — helpers shared by the function-object plugins (plugins/functionObjects):
 //
+//  * SamplingFunctionObject: the base of an object that writes a row of samples at the times
+//    its SampleControl gives, to postProcessing/<name>/<startTime>/.
 //  * SampleControl: when an object samples, from its dictionary
 //        writeControl  timeStep | runTime | writeTime;   // default timeStep
 //        writeInterval 10;        // steps (timeStep, default 1) or seconds (runTime, required)
@@ -16,10 +18,12 @@
 
 #include "Dictionary.hpp"
 #include "FunctionObject.hpp"
+#include "ModelContext.hpp"
 #include "NeighbourSearch.hpp"
 #include "PairLoop.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -77,6 +81,34 @@ private:
     Mode mode_ = Mode::TimeStep;
     double interval_ = 1, startTime_ = 0, next_ = 1;
     long steps_ = 0;
+};
+
+// A function object that writes one row to postProcessing/<name>/<startTime>/<name>.dat at each
+// time its SampleControl gives (fieldStats, probes, surgeFront, waterLevel). start() names the
+// columns and calls open(); the object's sample() writes a row to file_.
+class SamplingFunctionObject : public FunctionObject {
+public:
+    void execute(const Scene& s, bool writeTime) override {
+        if (control_.due(s.time, writeTime)) sample(s, true);
+    }
+
+protected:
+    explicit SamplingFunctionObject(const ModelContext& c)
+        : name_(c.name), dim_(c.physics.dimension), caseDir_(c.caseDirectory), control_(c.dict) {}
+    void open(double startTime, const std::vector<std::string>& columns) {
+        file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
+        control_.start(startTime);
+    }
+    // One row at the scene's time; listsValid: the neighbour lists are the step's (false at start()).
+    virtual void sample(const Scene& s, bool listsValid) = 0;
+
+    std::string name_;
+    int dim_;
+    PostProcessingFile file_;
+
+private:
+    std::filesystem::path caseDir_;
+    SampleControl control_;
 };
 
 // The fluid particles bucketed on a grid of cell size h over their current bounding box.

@@ -21,10 +21,9 @@ namespace {
 using namespace spindrift;
 using namespace spindrift::functionObjects;
 
-class FieldStats final : public FunctionObject {
+class FieldStats final : public SamplingFunctionObject {
 public:
-    explicit FieldStats(const ModelContext& c)
-        : caseDir_(c.caseDirectory), name_(c.name), control_(c.dict), dim_(c.physics.dimension) {}
+    explicit FieldStats(const ModelContext& c) : SamplingFunctionObject(c) {}
 
     void start(const Scene& s, double startTime) override {
         std::vector<std::string> columns{"nParticles", "rhoErrMin", "rhoErrMax", "rhoErrAvg", "kineticEnergy"};
@@ -35,17 +34,12 @@ public:
             columns.push_back(std::string(1, "xyz"[a]) + "Min");
             columns.push_back(std::string(1, "xyz"[a]) + "Max");
         }
-        file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
-        control_.start(startTime);
+        open(startTime, columns);
         sample(s, false);
     }
 
-    void execute(const Scene& s, bool writeTime) override {
-        if (control_.due(s.time, writeTime)) sample(s, true);
-    }
-
 private:
-    void sample(const Scene& s, bool listsValid) {
+    void sample(const Scene& s, bool listsValid) override {
         const auto& x = s.fluid.position();
         const auto& v = s.fluid.velocity();
         const auto& rho = s.fluid.density();
@@ -105,12 +99,7 @@ private:
         return std::isfinite(r2min) ? std::sqrt(r2min) : notANumber;
     }
 
-    std::filesystem::path caseDir_;
-    std::string name_;
-    SampleControl control_;
-    int dim_;
     SampleGrid grid_;
-    PostProcessingFile file_;
 };
 } // namespace
 

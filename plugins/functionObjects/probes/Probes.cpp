@@ -30,10 +30,10 @@ namespace {
 using namespace spindrift;
 using namespace spindrift::functionObjects;
 
-class Probes final : public FunctionObject {
+class Probes final : public SamplingFunctionObject {
 public:
     explicit Probes(const ModelContext& c)
-        : caseDir_(c.caseDirectory), name_(c.name), control_(c.dict), dim_(c.physics.dimension) {
+        : SamplingFunctionObject(c) {
         fieldNames_ = c.dict.getOrDefault<std::vector<std::string>>("fields", {"pressure", "velocity", "density"});
         fieldsWhere_ = c.dict.locationOf("fields");
         if (fieldNames_.empty()) throw InputError(fieldsWhere_, "'fields' lists no field", "fields");
@@ -72,13 +72,12 @@ public:
                 else
                     for (int a = 0; a < dim_; ++a) columns.push_back(columnLabel(f.label + "xyz"[a], p, dim_));
             }
-        file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
-        control_.start(startTime);
+        open(startTime, columns);
         warnOfLocationsOutside(s);
     }
 
-    void execute(const Scene& s, bool writeTime) override {
-        if (!control_.due(s.time, writeTime)) return;
+private:
+    void sample(const Scene& s, bool) override {
         grid_.build(s);
         std::vector<double> row;
         const std::size_t nProbes = locations_.size();
@@ -111,7 +110,6 @@ public:
         file_.writeRow(s.time, row);
     }
 
-private:
     void warnOfLocationsOutside(const Scene& s) const {
         Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::max()), hi = -lo;
         const auto extend = [&](const std::vector<Vec3>& x) {
@@ -146,16 +144,11 @@ private:
         std::string name, label;
         bool vector = false;
     };
-    std::filesystem::path caseDir_;
-    std::string name_;
-    SampleControl control_;
-    int dim_;
     std::vector<std::string> fieldNames_;
     SourceLocation fieldsWhere_, locationsWhere_;
     std::vector<Vec3> locations_;
     std::vector<Field> fields_;
     SampleGrid grid_;
-    PostProcessingFile file_;
 };
 } // namespace
 

@@ -25,10 +25,10 @@ namespace {
 using namespace spindrift;
 using namespace spindrift::functionObjects;
 
-class SurgeFront final : public FunctionObject {
+class SurgeFront final : public SamplingFunctionObject {
 public:
     explicit SurgeFront(const ModelContext& c)
-        : caseDir_(c.caseDirectory), name_(c.name), control_(c.dict), dim_(c.physics.dimension) {
+        : SamplingFunctionObject(c) {
         direction_ = c.dict.getOrDefault<Vec3>("direction", Vec3(1, 0, 0));
         if (dim_ == 2) direction_[2] = 0;
         if (!(direction_.norm() > 0))
@@ -49,17 +49,12 @@ public:
     void start(const Scene& s, double startTime) override {
         const std::vector<std::string> columns =
             dim_ == 3 ? std::vector<std::string>{"front", "x", "y", "z"} : std::vector<std::string>{"front", "x", "y"};
-        file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
-        control_.start(startTime);
+        open(startTime, columns);
         sample(s, false);
     }
 
-    void execute(const Scene& s, bool writeTime) override {
-        if (control_.due(s.time, writeTime)) sample(s, true);
-    }
-
 private:
-    void sample(const Scene& s, bool listsValid) {
+    void sample(const Scene& s, bool listsValid) override {
         const auto& x = s.fluid.position();
         const auto& list = s.search.fluidNeighbours();
         // neighbour counts are those of the step's last search (same particle order)
@@ -81,15 +76,10 @@ private:
         file_.writeRow(s.time, row);
     }
 
-    std::filesystem::path caseDir_;
-    std::string name_;
-    SampleControl control_;
-    int dim_;
     Vec3 direction_, origin_, up_ = Vec3::Zero();
     double maxHeight_ = 0;
     bool useHeight_ = false;
     int minNeighbours_ = 0;
-    PostProcessingFile file_;
 };
 } // namespace
 

@@ -23,11 +23,10 @@ namespace {
 using namespace spindrift;
 using namespace spindrift::functionObjects;
 
-class WaterLevel final : public FunctionObject {
+class WaterLevel final : public SamplingFunctionObject {
 public:
     explicit WaterLevel(const ModelContext& c)
-        : caseDir_(c.caseDirectory), name_(c.name), control_(c.dict), dim_(c.physics.dimension),
-          rho0_(c.physics.rho0), dx_(c.physics.particleSpacing) {
+        : SamplingFunctionObject(c), rho0_(c.physics.rho0), dx_(c.physics.particleSpacing) {
         gauges_ = c.dict.get<std::vector<Vec3>>("gaugeLocations");
         if (gauges_.empty())
             throw InputError(c.dict.locationOf("gaugeLocations"), "'gaugeLocations' lists no point", "gaugeLocations");
@@ -45,13 +44,8 @@ public:
     void start(const Scene& s, double startTime) override {
         std::vector<std::string> columns;
         for (const auto& p : gauges_) columns.push_back(columnLabel("level", p, dim_));
-        file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
-        control_.start(startTime);
-        sample(s);
-    }
-
-    void execute(const Scene& s, bool writeTime) override {
-        if (control_.due(s.time, writeTime)) sample(s);
+        open(startTime, columns);
+        sample(s, false);
     }
 
 private:
@@ -61,7 +55,7 @@ private:
         return sum * s.fluid.particleMass() / rho0_;
     }
 
-    void sample(const Scene& s) {
+    void sample(const Scene& s, bool) override {
         grid_.build(s);
         const auto& x = s.fluid.position();
         std::vector<double> row;
@@ -89,15 +83,10 @@ private:
         file_.writeRow(s.time, row);
     }
 
-    std::filesystem::path caseDir_;
-    std::string name_;
-    SampleControl control_;
-    int dim_;
     Scalar rho0_, dx_, threshold_ = 0.5;
     Vec3 up_;
     std::vector<Vec3> gauges_;
     SampleGrid grid_;
-    PostProcessingFile file_;
 };
 } // namespace
 

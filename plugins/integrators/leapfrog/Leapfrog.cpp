@@ -15,16 +15,7 @@ public:
     int order() const override { return 2; }
 
     void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
-        startStep(s, evaluate);
-        auto& x = s.fluid.position();
-        auto& v = s.fluid.velocity();
-        const auto& a = s.fluid.acceleration();
-        const Scalar half = Scalar(0.5) * dt;
-        forEachFluidParticle(s, [&](std::size_t i) { v[i] += half * a[i]; });
-        advanceIntegratedFields(s, dt); // ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_{n+½})
-        forEachFluidParticle(s, [&](std::size_t i) { x[i] += dt * advectionVelocity(s, v, i); });
-        evaluateAtEnd(s, dt, evaluate);
-        forEachFluidParticle(s, [&](std::size_t i) { v[i] += half * a[i]; });
+        kickDriftKick(s, dt, evaluate, EvaluationVelocity::halfStep);
     }
 };
 } // namespace

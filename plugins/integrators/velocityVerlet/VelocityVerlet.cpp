@@ -6,7 +6,9 @@
 //   v_{n+1} = v_n + ½Δt (a_n + a_{n+1})
 // One evaluation per step (a_{n+1} is the next step's a_n). Second order for position- and
 // velocity-dependent forces alike (v* is first-order accurate, which a ½Δt factor makes a
-// third-order local error); identical to leapfrog when forces depend on position only.
+// third-order local error); identical to leapfrog when forces depend on position only. An
+// integrated field (continuity density) takes the rate of the mid-step velocities at x_n:
+// ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_n + ½Δt a_n).
 #include "Integrator.hpp"
 #include "Plugin.hpp"
 
@@ -19,26 +21,8 @@ public:
     int order() const override { return 2; }
 
     void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
-        startStep(s, evaluate);
-        auto& x = s.fluid.position();
-        auto& v = s.fluid.velocity();
-        const auto& a = s.fluid.acceleration();
-        halfKick_.resize(s.fluid.size()); // v_n + ½Δt a_n, scratch within the step
-        const Scalar half = Scalar(0.5) * dt;
-        forEachFluidParticle(s, [&](std::size_t i) { v[i] = halfKick_[i] = v[i] + half * a[i]; });
-        // an integrated field (continuity density) with the mid-step velocities at x_n:
-        // ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_n + ½Δt a_n)
-        advanceIntegratedFields(s, dt);
-        forEachFluidParticle(s, [&](std::size_t i) {
-            x[i] += dt * advectionVelocity(s, v, i); // = x_n + Δt (v_n + ½Δt a_n)
-            v[i] = halfKick_[i] + half * a[i];       // v*
-        });
-        evaluateAtEnd(s, dt, evaluate);
-        forEachFluidParticle(s, [&](std::size_t i) { v[i] = halfKick_[i] + half * a[i]; });
+        kickDriftKick(s, dt, evaluate, EvaluationVelocity::predicted);
     }
-
-private:
-    std::vector<Vec3> halfKick_;
 };
 } // namespace
 

@@ -14,19 +14,12 @@ namespace {
 using namespace spindrift;
 
 // Π_ij without its constant factors: v_ij·r_ij / ((r² + ε) ρ̄_ij) ∇W_ij for approaching pairs.
-struct ArtificialViscosityTerm {
+struct ArtificialViscosityTerm : VelocityDensityTerm {
     struct Sum {
         Vec3 fluid = Vec3::Zero(), wall = Vec3::Zero();
     };
     static constexpr bool usesGradient = true;
-    struct Particle {
-        Vec3 v;
-        Scalar rho;
-    };
-    const Vec3* v;
-    const Scalar* rho;
     Scalar eps; // 0.01 h²
-    Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
         // approaching pairs only; min() instead of a branch (taken for half the pairs, unpredictably)
         const Scalar vr = std::min((pi.v - v[q.j]).dot(q.r), Scalar(0));
@@ -60,7 +53,7 @@ public:
         auto& a = s.fluid.acceleration();
         // −m Π_ij ∇W_ij = 2 m α c h · v_ij·r_ij / ((r² + ε)(ρ_i + ρ_j)) ∇W_ij; walls with ρ_b = ρ_i
         const Scalar fluidScale = 2 * m * ach, wallScale = wallFactor_ * ach;
-        const ArtificialViscosityTerm term{s.fluid.velocity().data(), rho.data(), Scalar(0.01) * h * h};
+        const ArtificialViscosityTerm term{{s.fluid.velocity().data(), rho.data()}, Scalar(0.01) * h * h};
         forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const auto& sum) {
             a[i] += fluidScale * sum.fluid + (wallScale / rho[i]) * sum.wall;
         });

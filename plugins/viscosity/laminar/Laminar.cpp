@@ -23,18 +23,11 @@ namespace {
 using namespace spindrift;
 
 // (μ_i + μ_j)/(ρ_i ρ_j) r² F(r²)/(r² + ε) (v_i − v_j), F = (dW/dr)/r; m and ν applied after.
-struct LaminarTerm {
+struct LaminarTerm : VelocityDensityTerm {
     using Sum = Vec3;
     static constexpr bool usesDampedGradient = true; // r² F(r²)/(r² + ε) = r² q.dampedGradFactor
-    struct Particle {
-        Vec3 v;
-        Scalar rho;
-    };
-    const Vec3* v;
-    const Scalar* rho;
     Scalar m, wallFactor;
     bool visitsWalls;
-    Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
         sum += (m * (pi.rho + rho[q.j]) / (pi.rho * rho[q.j]) * q.r2 * q.dampedGradFactor) * (pi.v - v[q.j]);
     }
@@ -67,7 +60,7 @@ public:
     void addAcceleration(Scene& s, Scalar) override {
         const Scalar nu = nu_ * correction_;
         auto& a = s.fluid.acceleration();
-        const LaminarTerm term{s.fluid.velocity().data(), s.fluid.density().data(), s.fluid.particleMass(), wallFactor_,
+        const LaminarTerm term{{s.fluid.velocity().data(), s.fluid.density().data()}, s.fluid.particleMass(), wallFactor_,
                                wallFactor_ != 0};
         forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += nu * sum; });
     }

@@ -17,18 +17,11 @@
 namespace {
 using namespace spindrift;
 
-struct XsphTerm {
+struct XsphTerm : VelocityDensityTerm {
     using Sum = Vec3; // Σ (m_j/ρ̄_ij) (v_j − v_i) W_ij
     static constexpr bool usesKernel = true;
-    struct Particle {
-        Vec3 v;
-        Scalar rho;
-    };
-    const Vec3* v;
-    const Scalar* rho;
     Scalar m, wallFactor;
     bool visitsWalls;
-    Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
         sum += (2 * m * q.W / (pi.rho + rho[q.j])) * (v[q.j] - pi.v);
     }
@@ -52,7 +45,7 @@ public:
         if (!(dt > 0) || c_ == 0) return;
         const Scalar scale = c_ / dt;
         auto& a = s.fluid.acceleration();
-        const XsphTerm term{s.fluid.velocity().data(), s.fluid.density().data(), s.fluid.particleMass(),
+        const XsphTerm term{{s.fluid.velocity().data(), s.fluid.density().data()}, s.fluid.particleMass(),
                             wallFactor_, wallFactor_ != 0};
         forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += scale * sum; });
     }
