@@ -47,16 +47,18 @@ public:
     Scalar WSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
         const int k = static_cast<int>(s);
-        if (k >= sqIntervals_ || r2 < Scalar(0)) return Scalar(0);
-        if (k < nearIntervals_) return W(std::sqrt(r2));
+        if (k >= sqIntervals_ || r2 < Scalar(0)) [[unlikely]]
+            return Scalar(0);
+        if (k < nearIntervals_) [[unlikely]] return W(std::sqrt(r2));
         return horner(wSq_[k], s - Scalar(k));
     }
     // dW/dr / r as a function of r² (0 at r = 0): ∇_i W_ij = r_ij · gradFactorSq(r²).
     Scalar gradFactorSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
         const int k = static_cast<int>(s);
-        if (k >= sqIntervals_ || r2 < Scalar(0)) return Scalar(0);
-        if (k < nearIntervals_) {
+        if (k >= sqIntervals_ || r2 < Scalar(0)) [[unlikely]]
+            return Scalar(0);
+        if (k < nearIntervals_) [[unlikely]] {
             const Scalar r = std::sqrt(r2);
             return r > Scalar(0) ? dWdr(r) / r : Scalar(0);
         }
@@ -77,8 +79,11 @@ public:
     Values valuesSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
         const int k = static_cast<int>(s);
-        if (k >= sqIntervals_ || r2 < Scalar(0)) return {0, 0, 0};
-        if (k < nearIntervals_) {
+        // both rare in a pair loop (its lists hold the pairs within h; few are closer than h/4):
+        // the hints keep the table path a straight run of instructions
+        if (k >= sqIntervals_ || r2 < Scalar(0)) [[unlikely]]
+            return {0, 0, 0};
+        if (k < nearIntervals_) [[unlikely]] {
             const Scalar r = std::sqrt(r2);
             const Scalar F = r > Scalar(0) ? dWdr(r) / r : Scalar(0);
             return {W(r), F, F / (r2 + eta2_)};

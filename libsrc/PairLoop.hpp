@@ -29,6 +29,7 @@
 #include "Scene.hpp"
 
 #include <array>
+#include <type_traits>
 
 namespace spindrift {
 
@@ -142,57 +143,67 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
     using Sum = typename Term::Sum;
     constexpr bool gradient = detail::usesGradient<Term>();
     constexpr bool walls = detail::HasWallTerm<Term>;
-    const KernelTable& kt = s.kernel;
+    static_assert(sizeof(Term) <= 256, "a pair term is a few pointers and numbers (copied per particle)");
+    const KernelTable* kt = &s.kernel;
     const NeighbourList& ff = s.search.fluidNeighbours();
-    // the walls that take part: those with a boundary model's masses
-    std::array<WallView, NeighbourSearch::maxLists> views;
-    std::array<std::size_t, NeighbourSearch::maxLists> wallIndex;
+    // the walls that take part (those with a boundary model's masses): what their loops read,
+    // gathered once per call rather than once per particle
+    struct WallLoop {
+        WallView view;
+        const std::vector<Vec3>* x;
+        const NeighbourList* list;
+    };
+    std::array<WallLoop, NeighbourSearch::maxLists> wallLoops;
     std::size_t wallCount = 0;
     bool wallsWanted = walls;
     if constexpr (requires { term.visitsWalls; }) wallsWanted = walls && term.visitsWalls;
     if (wallsWanted)
         for (std::size_t k = 0; k < s.walls.size(); ++k)
-            if (s.walls[k].mass) {
-                views[wallCount] = viewOf(s.walls[k]);
-                wallIndex[wallCount++] = k;
-            }
+            if (s.walls[k].mass)
+                wallLoops[wallCount++] = {viewOf(s.walls[k]), &s.walls[k].particles.position(), &s.search.wallNeighbours(k)};
     const Vec3* cached = gradient && &x == &s.fluid.position() && s.gradients.validFor(s.search)
                              ? s.gradients.values.data()
                              : nullptr;
     const auto pass = [&](auto fluidKernel) {
         forEachParticleBalanced(s.search, [&](std::size_t i) {
-            const auto pi = term.particle(i);
+            // the term and the kernel lookup as copies local to the particle: nothing in its pair
+            // loops can change them, so they stay in registers (read through the captured
+            // references, the compiler reloaded the term's pointers and the table's address every pair)
+            const Term t = term;
+            const auto kernel = fluidKernel;
+            const KernelTable& table = *kt;
+            const auto pi = t.particle(i);
             Sum sum = detail::zeroSum<Sum>();
             if constexpr (detail::visitsFluid<Term>()) {
                 std::uint32_t k = ff.offsets[i];
                 forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
-                    const detail::PairKernel w = fluidKernel(k, rij, r2);
-                    term.fluid(pi, Pair{j, rij, r2, w.gradW, w.W, w.dampedGradFactor, k}, sum);
+                    const detail::PairKernel w = kernel(table, k, rij, r2);
+                    t.fluid(pi, Pair{j, rij, r2, w.gradW, w.W, w.dampedGradFactor, k}, sum);
                     ++k;
                 });
             }
             if constexpr (walls)
                 for (std::size_t w = 0; w < wallCount; ++w) {
-                    const WallView& view = views[w];
-                    const std::vector<Vec3>& xb = s.walls[wallIndex[w]].particles.position();
-                    const NeighbourList& list = s.search.wallNeighbours(wallIndex[w]);
-                    std::uint32_t k = list.offsets[i];
-                    forEachNeighbour(list, x, xb, i, [&](Index b, const Vec3& rib, Scalar r2) {
-                        const detail::PairKernel w = detail::pairKernel<Term>(kt, rib, r2);
-                        term.wall(pi, WallPair{{b, rib, r2, w.gradW, w.W, w.dampedGradFactor, k++}, view}, sum);
+                    const WallLoop& loop = wallLoops[w];
+                    std::uint32_t k = loop.list->offsets[i];
+                    forEachNeighbour(*loop.list, x, *loop.x, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                        const detail::PairKernel w = detail::pairKernel<Term>(table, rib, r2);
+                        t.wall(pi, WallPair{{b, rib, r2, w.gradW, w.W, w.dampedGradFactor, k++}, loop.view}, sum);
                     });
                 }
             out(i, pi, sum);
         }, wallCount > 0 ? NeighbourSearch::PairWork::FluidAndWall : NeighbourSearch::PairWork::Fluid);
     };
     if (cached)
-        pass([&](std::uint32_t k, const Vec3& rij, Scalar r2) {
-            detail::PairKernel w = detail::pairKernel<Term, false>(kt, rij, r2);
+        pass([cached](const KernelTable& table, std::uint32_t k, const Vec3& rij, Scalar r2) {
+            detail::PairKernel w = detail::pairKernel<Term, false>(table, rij, r2);
             w.gradW = cached[k];
             return w;
         });
     else
-        pass([&](std::uint32_t, const Vec3& rij, Scalar r2) { return detail::pairKernel<Term>(kt, rij, r2); });
+        pass([](const KernelTable& table, std::uint32_t, const Vec3& rij, Scalar r2) {
+            return detail::pairKernel<Term>(table, rij, r2);
+        });
 }
 
 // out(i, particle_i, Σ) for every fluid particle, Σ = Σ_j term.cached(particle_i, j, ∇W_ij) over
@@ -203,9 +214,10 @@ template <class Term, class Out> void forEachCachedPairSum(const Scene& s, const
     const NeighbourList& ff = s.search.fluidNeighbours();
     const Vec3* g = s.gradients.values.data();
     forEachParticleBalanced(s.search, [&](std::size_t i) {
-        const auto pi = term.particle(i);
+        const Term t = term; // a local copy, kept in registers (forEachPairSum)
+        const auto pi = t.particle(i);
         Sum sum = detail::zeroSum<Sum>();
-        for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k) term.cached(pi, ff.indices[k], g[k], sum);
+        for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k) t.cached(pi, ff.indices[k], g[k], sum);
         out(i, pi, sum);
     }, NeighbourSearch::PairWork::Fluid);
 }
