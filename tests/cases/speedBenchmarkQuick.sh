@@ -3,8 +3,9 @@
 # runs on 1 and 2 threads and prints a complete row; the incompressible solvers do at least the
 # 3 iterations of the reference; a run gives the same max density error on 1 and 2 threads
 # (results do not depend on the thread count); -compare prints a row for each build and their
-# ratio; -scaling a row per method with its speed-up against spindriftParallelCeiling's. Times
-# are printed, never asserted.
+# ratio; -scaling a row per method with its speed-up against spindriftParallelCeiling's;
+# -instructions (valgrind) the same count a step for the same build twice, or, for a build valgrind
+# cannot decode (AVX-512 of -march=native), a message saying so. Times are printed, never asserted.
 #   speedBenchmarkQuick.sh <bin dir>
 set -euo pipefail
 export SPINDRIFT_BIN=$1
@@ -39,4 +40,18 @@ awk '$1 == "wcsph" { found = 1
         if ($2 != 2 || $3 !~ /^-?[0-9.]+$/ || $4 !~ /^-?[0-9.]+$/ || $8 !~ /^-?[0-9.]+$/) { print "FAIL: -scaling row: " $0; exit 1 }
         for (i = 5; i <= 7; ++i) if ($i !~ /^-?[0-9.]+x$/) { print "FAIL: -scaling ratio: " $i; exit 1 } }
      END { if (!found) { print "FAIL: -scaling printed no row"; exit 1 } }' <<< "$out" || exit 1
+# -instructions: deterministic, so the same build against itself reads 1 (to the start-up's few
+# thousand instructions that depend on the environment)
+if command -v valgrind > /dev/null; then
+    out=$("$here/../../tutorials/benchmarks/Allrun" -instructions -methods wcsph -endTime 0.004 -startupTime 0.002 -compare "$SPINDRIFT_BIN")
+    echo "$out"
+    if grep -q "valgrind cannot decode this build's instructions" <<< "$out"; then
+        echo "(a build with instructions valgrind cannot decode: counted nothing, said why)"
+    else
+        ratio=$(sed -nE 's/.*instructions per step, this build \/ the other \(\*\): ([0-9.]+) .*/\1/p' <<< "$out")
+        [ -n "$ratio" ] || fail "-instructions: no ratio"
+        awk -v r="$ratio" 'BEGIN { exit !(r >= 0.998 && r <= 1.002) }' || fail "-instructions: the same build counted $ratio times itself"
+        awk '$1 == "wcsph" && $5 > 1 { found = 1 } END { exit !found }' <<< "$out" || fail "-instructions: no count a step"
+    fi
+fi
 echo "speed benchmark quick: OK"
