@@ -29,7 +29,6 @@
 #include "Scene.hpp"
 
 #include <array>
-#include <type_traits>
 
 namespace spindrift {
 

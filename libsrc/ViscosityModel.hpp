@@ -21,6 +21,7 @@ public:
 };
 
 class ViscosityModel : public ForceModel {};
+class ExtraForce : public ForceModel {};
 
 // What a viscous pair term reads of particle i before its pairs (PairLoop.hpp): its velocity and
 // density. The artificial, laminar and XSPH terms derive from it.
@@ -33,6 +34,5 @@ struct VelocityDensityTerm {
     const Scalar* rho;
     Particle particle(std::size_t i) const { return {v[i], rho[i]}; }
 };
-class ExtraForce : public ForceModel {};
 
 } // namespace spindrift
