@@ -72,11 +72,11 @@ public:
     Scalar dampedGradFactorSq(Scalar r2) const { return valuesSq(r2).dampedGradFactor; }
 
     // W, dW/dr / r and the damped factor from one lookup of r²'s interval (a pair loop takes
-    // the ones its term asks for; the others are never computed once inlined).
+    // the ones its term asks for; the others are never computed once inlined, so always inlined).
     struct Values {
         Scalar W, gradFactor, dampedGradFactor;
     };
-    Values valuesSq(Scalar r2) const {
+    [[gnu::always_inline]] Values valuesSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
         const int k = static_cast<int>(s);
         // both rare in a pair loop (its lists hold the pairs within h; few are closer than h/4):

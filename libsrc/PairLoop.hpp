@@ -107,13 +107,14 @@ template <class Term> constexpr bool usesDampedGradient() {
 }
 // What a term asks of the kernel for one pair: ∇_i W_ij, W_ij, the damped gradient factor (each
 // zero when not asked for), from one table lookup (the values not asked for are never computed).
-// withGradient false: the caller has the gradient (the scene's cache).
+// withGradient false: the caller has the gradient (the scene's cache). Always inlined, as the
+// table's lookup: called, it computes every value (GCC called both in dfsph's two-term pass).
 struct PairKernel {
     Vec3 gradW;
     Scalar W, dampedGradFactor;
 };
 template <class Term, bool withGradient = true>
-PairKernel pairKernel(const KernelTable& kt, const Vec3& rij, Scalar r2) {
+[[gnu::always_inline]] inline PairKernel pairKernel(const KernelTable& kt, const Vec3& rij, Scalar r2) {
     constexpr bool g = withGradient && usesGradient<Term>(), w = usesKernel<Term>(), d = usesDampedGradient<Term>();
     if constexpr (!g && !w && !d) {
         return {Vec3::Zero(), 0, 0};
