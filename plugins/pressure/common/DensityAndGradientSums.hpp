@@ -35,14 +35,18 @@ struct DensityAndGradientSumsTerm {
     }
 };
 
-// Σ_j (u_i − u_j)·∇W_ij over the cached gradients, for any per-particle vector u (a velocity:
-// the fluid part of Dρ_i/Dt over m; an acceleration: that of a displacement over Δt²).
-struct CachedDivergenceTerm {
+// Σ_j (u_i − u_j)·∇W_ij over the fluid pairs, for any per-particle vector u (a velocity: the
+// fluid part of Dρ_i/Dt over m; an acceleration: that of a displacement over Δt²), with the
+// cached gradients (forEachCachedPairSum) or in the pass that computes them (forEachPairSum,
+// beside DensityAndGradientSumsTerm, whose sums give the walls' part: u_i·wallGrad − wallRate).
+struct FluidDivergenceTerm {
     using Sum = Scalar;
     using Particle = Vec3; // u_i
+    static constexpr bool usesGradient = true;
     const Vec3* u;
     Particle particle(std::size_t i) const { return u[i]; }
     void cached(const Vec3& ui, Index j, const Vec3& gradW, Sum& sum) const { sum += (ui - u[j]).dot(gradW); }
+    void fluid(const Vec3& ui, const Pair& q, Sum& sum) const { cached(ui, q.j, q.gradW, sum); }
 };
 
 // Σ_j (s_i + s_j) ∇W_ij over the cached gradients, for any per-particle scalar s (p/ρ²: the

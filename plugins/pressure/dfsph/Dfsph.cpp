@@ -253,7 +253,7 @@ private:
         const Scalar m = s.fluid.particleMass();
         const Vec3* g = wallGradient_->data();
         const Scalar* wallRate = wallRate_->data();
-        forEachCachedPairSum(s, CachedDivergenceTerm{velocity_.data()}, [&](std::size_t i, const Vec3& ui, Scalar fluid) {
+        forEachCachedPairSum(s, FluidDivergenceTerm{velocity_.data()}, [&](std::size_t i, const Vec3& ui, Scalar fluid) {
             then(i, m * fluid + ui.dot(g[i]) - wallRate[i]);
         });
     }
@@ -282,10 +282,10 @@ private:
         const DensityAndGradientSumsTerm sums{s.gradients.values.data()};
         if (rate) {
             rate->resize(x.size());
-            forEachPairSum(s, x, TwoTerms<DensityAndGradientSumsTerm, ContinuityTerm>{sums, {s.fluid.velocity().data()}},
-                           [&](std::size_t i, const auto&, const auto& sum) {
+            forEachPairSum(s, x, TwoTerms<DensityAndGradientSumsTerm, FluidDivergenceTerm>{sums, {s.fluid.velocity().data()}},
+                           [&](std::size_t i, const auto& pi, const auto& sum) {
                                factors(i, sum.a);
-                               (*rate)[i] = m * sum.b.fluid + sum.b.wall;
+                               (*rate)[i] = m * sum.b + pi.b.dot(sum.a.wallGrad) - sum.a.wallRate;
                            });
         } else {
             forEachPairSum(s, x, sums, [&](std::size_t i, const auto&, const auto& sum) { factors(i, sum); });

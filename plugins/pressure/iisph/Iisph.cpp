@@ -197,7 +197,7 @@ public:
         CompressionError err;
         for (;;) {
             // ρ* of the current pressure, and the next pressure (taken if ρ* misses η)
-            forEachCachedPairSum(s, CachedDivergenceTerm{pressureAcceleration_.data()},
+            forEachCachedPairSum(s, FluidDivergenceTerm{pressureAcceleration_.data()},
                                  [&](std::size_t i, const Vec3& ai, Scalar sum) {
                                      const Scalar predicted = rhoAdvected_[i] + dt2 * (m * sum + ai.dot(wallGrad_[i]));
                                      rhoPredicted_[i] = predicted;
