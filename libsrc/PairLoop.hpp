@@ -32,27 +32,37 @@
 
 namespace spindrift {
 
-// f(j, r_ij, r²) for every neighbour j of particle i in 'list' (positions xi of the set i
-// belongs to, xj of the neighbours' set). r_ij is the nearest periodic image when the domain
-// is periodic.
+// f(k, j, r_ij, r²) for every neighbour j of particle i in 'list' (positions xi of the set i
+// belongs to, xj of the neighbours' set), k the pair's place in the list. r_ij is the nearest
+// periodic image when the domain is periodic. The walk counts k (not a pointer into the
+// indices), so that data kept per pair is addressed by the loop's one induction variable.
 template <class F>
-inline void forEachNeighbour(const NeighbourList& list, const std::vector<Vec3>& xi,
-                             const std::vector<Vec3>& xj, std::size_t i, F&& f) {
+inline void forEachNeighbourPair(const NeighbourList& list, const std::vector<Vec3>& xi,
+                                 const std::vector<Vec3>& xj, std::size_t i, F&& f) {
     const Vec3 x = xi[i];
+    const Index* indices = list.indices.data();
+    const std::size_t begin = list.offsets[i], end = list.offsets[i + 1];
     if (list.periodic) {
-        for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) {
-            const Index j = *it;
+        for (std::size_t k = begin; k != end; ++k) {
+            const Index j = indices[k];
             Vec3 rij = x - xj[j];
             list.periodic->minimumImage(rij);
-            f(j, rij, rij.squaredNorm());
+            f(k, j, rij, rij.squaredNorm());
         }
         return;
     }
-    for (const Index* it = list.begin(i), *end = list.end(i); it != end; ++it) {
-        const Index j = *it;
+    for (std::size_t k = begin; k != end; ++k) {
+        const Index j = indices[k];
         const Vec3 rij = x - xj[j];
-        f(j, rij, rij.squaredNorm());
+        f(k, j, rij, rij.squaredNorm());
     }
+}
+
+// f(j, r_ij, r²) for every neighbour j of particle i in 'list' (forEachNeighbourPair).
+template <class F>
+inline void forEachNeighbour(const NeighbourList& list, const std::vector<Vec3>& xi,
+                             const std::vector<Vec3>& xj, std::size_t i, F&& f) {
+    forEachNeighbourPair(list, xi, xj, i, [&](std::size_t, Index j, const Vec3& rij, Scalar r2) { f(j, rij, r2); });
 }
 
 // One neighbour as the loop hands it to a term.
@@ -63,7 +73,7 @@ struct Pair {
     Vec3 gradW;      // ∇_i W_ij (terms with usesGradient; else zero)
     Scalar W;        // W_ij (terms with usesKernel; else zero)
     Scalar dampedGradFactor; // ∇_i W_ij/(r² + η²) = r · this, η² = 0.01 h² (usesDampedGradient; else zero)
-    std::uint32_t k; // the pair's place in its list (for data kept per pair)
+    std::size_t k;   // the pair's place in its list (for data kept per pair)
 };
 
 // A wall system's data as the pair terms read it (pointers into its fields).
@@ -75,6 +85,7 @@ struct WallView {
     const Scalar* p;           // its own pressure and density (when not mirrored)
     const Scalar* rho;
     bool mirrored;             // pressure and density are those of the fluid particle i
+    bool moving;               // v is not zero (a wall with a motion)
 };
 
 // A wall neighbour: the pair, and the wall it belongs to.
@@ -86,7 +97,7 @@ struct WallPair : Pair {
 inline WallView viewOf(const WallSystem& w) {
     return {w.particles.position().data(), w.particles.velocity().data(), w.velocitySeenByViscosity().data(),
             w.mass ? w.mass->data() : nullptr, w.particles.pressure().data(), w.particles.density().data(),
-            w.pressureMirrored};
+            w.pressureMirrored, w.moving()};
 }
 
 namespace detail {
@@ -174,47 +185,46 @@ void forEachPairSum(const Scene& s, const std::vector<Vec3>& x, const Term& term
             const KernelTable& table = *kt;
             const auto pi = t.particle(i);
             Sum sum = detail::zeroSum<Sum>();
-            if constexpr (detail::visitsFluid<Term>()) {
-                std::uint32_t k = ff.offsets[i];
-                forEachNeighbour(ff, x, x, i, [&](Index j, const Vec3& rij, Scalar r2) {
+            if constexpr (detail::visitsFluid<Term>())
+                forEachNeighbourPair(ff, x, x, i, [&](std::size_t k, Index j, const Vec3& rij, Scalar r2) {
                     const detail::PairKernel w = kernel(table, k, rij, r2);
                     t.fluid(pi, Pair{j, rij, r2, w.gradW, w.W, w.dampedGradFactor, k}, sum);
-                    ++k;
                 });
-            }
             if constexpr (walls)
                 for (std::size_t w = 0; w < wallCount; ++w) {
                     const WallLoop& loop = wallLoops[w];
-                    std::uint32_t k = loop.list->offsets[i];
-                    forEachNeighbour(*loop.list, x, *loop.x, i, [&](Index b, const Vec3& rib, Scalar r2) {
+                    forEachNeighbourPair(*loop.list, x, *loop.x, i, [&](std::size_t k, Index b, const Vec3& rib, Scalar r2) {
                         const detail::PairKernel w = detail::pairKernel<Term>(table, rib, r2);
-                        t.wall(pi, WallPair{{b, rib, r2, w.gradW, w.W, w.dampedGradFactor, k++}, loop.view}, sum);
+                        t.wall(pi, WallPair{{b, rib, r2, w.gradW, w.W, w.dampedGradFactor, k}, loop.view}, sum);
                     });
                 }
             out(i, pi, sum);
         }, wallCount > 0 ? NeighbourSearch::PairWork::FluidAndWall : NeighbourSearch::PairWork::Fluid);
     };
     if (cached)
-        pass([cached](const KernelTable& table, std::uint32_t k, const Vec3& rij, Scalar r2) {
+        pass([cached](const KernelTable& table, std::size_t k, const Vec3& rij, Scalar r2) {
             detail::PairKernel w = detail::pairKernel<Term, false>(table, rij, r2);
             w.gradW = cached[k];
             return w;
         });
     else
-        pass([](const KernelTable& table, std::uint32_t, const Vec3& rij, Scalar r2) {
+        pass([](const KernelTable& table, std::size_t, const Vec3& rij, Scalar r2) {
             return detail::pairKernel<Term>(table, rij, r2);
         });
 }
 
 // out(i, particle_i, Σ) for every fluid particle, Σ = Σ_j term.cached(particle_i, j, ∇W_ij) over
 // its fluid neighbours with the scene's cached gradients (they must be valid): no positions are
-// read, for solvers that linearise about the positions of one search (dfsph).
+// read, for solvers that linearise about the positions of one search (dfsph). A term with
+// visits(i) is summed (and out called) only for the particles it visits.
 template <class Term, class Out> void forEachCachedPairSum(const Scene& s, const Term& term, Out&& out) {
     using Sum = typename Term::Sum;
     const NeighbourList& ff = s.search.fluidNeighbours();
     const Vec3* g = s.gradients.values.data();
     forEachParticleBalanced(s.search, [&](std::size_t i) {
         const Term t = term; // a local copy, kept in registers (forEachPairSum)
+        if constexpr (requires { t.visits(i); })
+            if (!t.visits(i)) return;
         const auto pi = t.particle(i);
         Sum sum = detail::zeroSum<Sum>();
         for (std::uint32_t k = ff.offsets[i]; k < ff.offsets[i + 1]; ++k) t.cached(pi, ff.indices[k], g[k], sum);

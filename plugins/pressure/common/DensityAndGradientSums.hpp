@@ -12,7 +12,7 @@ namespace spindrift {
 // lists). ρ_i = m (W(0) + w) + wall.
 struct DensityAndGradientSumsTerm {
     struct Sum {
-        Scalar w = 0, squares = 0, wall = 0, wallRate = 0; // Σ W_ij, Σ |∇W_ij|², Σ M_b W_ib, Σ M_b v_b·∇W_ib
+        Scalar w = 0, squares = 0, wall = 0, wallRate = 0; // Σ W_ij, Σ |∇W_ij|², Σ M_b W_ib, Σ M_b v_b·∇W_ib (moving walls)
         Vec3 grad = Vec3::Zero();                          // Σ ∇W_ij
         Vec3 wallGrad = Vec3::Zero(), mirroredGrad = Vec3::Zero(); // Σ M_b ∇W_ib, over the walls that mirror p
     };
@@ -31,22 +31,20 @@ struct DensityAndGradientSumsTerm {
         const Vec3 g = q.mass() * q.gradW;
         sum.wallGrad += g;
         if (q.wall.mirrored) sum.mirroredGrad += g;
-        sum.wallRate += q.wall.v[q.j].dot(g);
+        if (q.wall.moving) sum.wallRate += q.wall.v[q.j].dot(g);
     }
 };
 
 // Σ_j (u_i − u_j)·∇W_ij over the fluid pairs, for any per-particle vector u (a velocity: the
 // fluid part of Dρ_i/Dt over m; an acceleration: that of a displacement over Δt²), with the
-// cached gradients (forEachCachedPairSum) or in the pass that computes them (forEachPairSum,
-// beside DensityAndGradientSumsTerm, whose sums give the walls' part: u_i·wallGrad − wallRate).
+// cached gradients (forEachCachedPairSum; DensityAndGradientSumsTerm's sums give the walls'
+// part: u_i·wallGrad − wallRate).
 struct FluidDivergenceTerm {
     using Sum = Scalar;
     using Particle = Vec3; // u_i
-    static constexpr bool usesGradient = true;
     const Vec3* u;
     Particle particle(std::size_t i) const { return u[i]; }
     void cached(const Vec3& ui, Index j, const Vec3& gradW, Sum& sum) const { sum += (ui - u[j]).dot(gradW); }
-    void fluid(const Vec3& ui, const Pair& q, Sum& sum) const { cached(ui, q.j, q.gradW, sum); }
 };
 
 // Σ_j (s_i + s_j) ∇W_ij over the cached gradients, for any per-particle scalar s (p/ρ²: the

@@ -106,7 +106,6 @@ public:
     // the last step's check when it searched at exactly these positions (the core then kept
     // that search, and the cached gradients are still valid).
     void computeDensity(Scene& s) override {
-        startRate_.clear(); // (a check's density was taken with the velocities before its step)
         if (checkPassed_ && s.search.builtAt(s.fluid.position()) && s.gradients.validFor(s.search)) {
             s.fluid.density().swap(*nextDensity_);
             checkPassed_ = false;
@@ -118,7 +117,7 @@ public:
                          "as symplecticEuler computes them): the check is approximate and costs a neighbour "
                          "search of its own each step");
         checkPassed_ = false;
-        densityAndFactors(s, s.fluid.position(), s.fluid.density(), &startRate_);
+        densityAndFactors(s, s.fluid.position(), s.fluid.density());
     }
 
     void addPressureAcceleration(Scene& s, Scalar dt) override {
@@ -150,12 +149,7 @@ public:
                 const bool full = ff.count(i) + s.search.wallNeighbourCount(i) >= minNeighbours_;
                 if (!(full && rate > 0)) kv[i] = 0;
             };
-            if (startRate_.size() == n) {
-#pragma omp parallel for schedule(static)
-                for (std::size_t i = 0; i < n; ++i) warmWhereCompressing(i, startRate_[i]);
-            } else {
-                densityRatePass(s, warmWhereCompressing);
-            }
+            if (warmStart_ > 0) densityRatePass(s, warmWhereCompressing, WarmStartRateTerm{{}, kv.data()});
             warmStartVelocities(s, kv, dt, invDt);
             for (;;) {
                 densityRatePass(s, [&](std::size_t i, Scalar rate) {
@@ -246,23 +240,30 @@ public:
 private:
     static constexpr FieldOptions scratch{false, false, true};
 
+    // FluidDivergenceTerm for the particles that carry a warm start (κ_v ≠ 0) only: for the
+    // others Dρ/Dt decides nothing, as their warm start is zero.
+    struct WarmStartRateTerm : FluidDivergenceTerm {
+        const Scalar* kappaV;
+        bool visits(std::size_t i) const { return kappaV[i] != 0; }
+    };
+
     // then(i, Dρ_i/Dt) with Dρ_i/Dt = m Σ_j (u_i − u_j)·∇W_ij + u_i·Σ_b M_b ∇W_ib − Σ_b M_b v_b·∇W_ib
     // of velocity_ (the cached gradients; the walls' sums were taken with the density, so no wall
-    // pair is visited in the solves).
-    template <class Then> void densityRatePass(const Scene& s, Then&& then) {
+    // pair is visited in the solves); with a term that visits only some particles, for those.
+    template <class Then, class Term = FluidDivergenceTerm>
+    void densityRatePass(const Scene& s, Then&& then, Term term = {}) {
         const Scalar m = s.fluid.particleMass();
         const Vec3* g = wallGradient_->data();
         const Scalar* wallRate = wallRate_->data();
-        forEachCachedPairSum(s, FluidDivergenceTerm{velocity_.data()}, [&](std::size_t i, const Vec3& ui, Scalar fluid) {
+        term.u = velocity_.data();
+        forEachCachedPairSum(s, term, [&](std::size_t i, const Vec3& ui, Scalar fluid) {
             then(i, m * fluid + ui.dot(g[i]) - wallRate[i]);
         });
     }
 
     // ρ_i, α_i, the pair gradients and the wall sums at positions x, on the lists of the search's
-    // last build (which must be at x), the density into rho; with 'rate', Dρ_i/Dt of the fluid's
-    // velocities too, in the same pass (the divergence solve's warm-start condition).
-    void densityAndFactors(Scene& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho,
-                           std::vector<Scalar>* rate = nullptr) {
+    // last build (which must be at x), the density into rho.
+    void densityAndFactors(Scene& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
         const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0(), h = s.constants.supportRadius;
         const Scalar tiny = Scalar(1e-9) * rho0_ * rho0_ / (h * h);
         rho.resize(x.size());
@@ -279,17 +280,8 @@ private:
             const Scalar denominator = g.squaredNorm() + m * m * sum.squares;
             alphaOverRho[i] = denominator > tiny ? 1 / denominator : Scalar(0);
         };
-        const DensityAndGradientSumsTerm sums{s.gradients.values.data()};
-        if (rate) {
-            rate->resize(x.size());
-            forEachPairSum(s, x, TwoTerms<DensityAndGradientSumsTerm, FluidDivergenceTerm>{sums, {s.fluid.velocity().data()}},
-                           [&](std::size_t i, const auto& pi, const auto& sum) {
-                               factors(i, sum.a);
-                               (*rate)[i] = m * sum.b + pi.b.dot(sum.a.wallGrad) - sum.a.wallRate;
-                           });
-        } else {
-            forEachPairSum(s, x, sums, [&](std::size_t i, const auto&, const auto& sum) { factors(i, sum); });
-        }
+        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.gradients.values.data()},
+                       [&](std::size_t i, const auto&, const auto& sum) { factors(i, sum); });
         s.gradients.build = s.search.builds();
     }
 
@@ -356,7 +348,6 @@ private:
     std::vector<Scalar> rate_, kappaOverRho_;
     std::vector<Scalar>* kappa_ = nullptr;  // field dfsphKappa: κ of the density solve
     std::vector<Scalar>* kappaV_ = nullptr; // field dfsphKappaV: κ of the divergence solve
-    std::vector<Scalar> startRate_;         // Dρ/Dt of the step's starting velocities (computeDensity's pass)
     std::vector<Scalar>* offset_ = nullptr; // field dfsphDensityOffset (checkPositions): δ
     // scratch fields: α_i/ρ_i = 1/(eq. 8's denominator), Σ_b M_b ∇W_ib, Σ_b M_b v_b·∇W_ib, and
     // (checkPositions) the density at the positions of the last check
