@@ -507,6 +507,16 @@ NeighbourList transposeList(const NeighbourList& list, std::size_t columns);
 // Calls f(i) for every fluid particle i in parallel, each thread over its workRange and then
 // over what is left of the others' (claimChunk): for pair loops over the step's lists
 // (deterministic: every i is computed by one thread alone, and f(i) writes only i's results).
+namespace detail {
+// f(i) for i in [first, last): one copy of f's code for every path of forEachParticleBalanced.
+// Inlined into each path, f was compiled twice, and GCC may contract a product and a sum into
+// a fused multiply-add in one copy but not the other: the single-precision dfsph then computed
+// different bits on one thread (the plain range) than on two (the chunks).
+template <class F> [[gnu::noinline]] void forEachInRange(std::size_t first, std::size_t last, F& f) {
+    for (std::size_t i = first; i < last; ++i) f(i);
+}
+} // namespace detail
+
 template <class F>
 void forEachParticleBalanced(const NeighbourSearch& search, F&& f,
                              NeighbourSearch::PairWork work = NeighbourSearch::PairWork::FluidAndWall) {
@@ -522,19 +532,19 @@ void forEachParticleBalanced(const NeighbourSearch& search, F&& f,
                 const int owner = (t + k) % threads;
                 for (auto chunk = search.claimChunk(owner, threads, work, region); chunk.first < chunk.second;
                      chunk = search.claimChunk(owner, threads, work, region)) {
-                    for (std::size_t i = chunk.first; i < chunk.second; ++i) f(i);
+                    detail::forEachInRange(chunk.first, chunk.second, f);
                     pairs += search.pairsIn(chunk.first, chunk.second, work);
                 }
             }
             search.recordWork(t, threads, pairs, omp_get_wtime() - start);
         } else {
             const auto [first, last] = search.workRange(t, threads, work);
-            for (std::size_t i = first; i < last; ++i) f(i);
+            detail::forEachInRange(first, last, f);
             search.recordTime(t, threads, work, first, last, omp_get_wtime() - start);
         }
     }
 #else
-    for (std::size_t i = 0; i < search.fluidNeighbours().size(); ++i) f(i);
+    detail::forEachInRange(0, search.fluidNeighbours().size(), f);
     (void)work;
 #endif
 }
