@@ -504,9 +504,6 @@ private:
 // whose row holds c, in ascending order (so independent of the thread count).
 NeighbourList transposeList(const NeighbourList& list, std::size_t columns);
 
-// Calls f(i) for every fluid particle i in parallel, each thread over its workRange and then
-// over what is left of the others' (claimChunk): for pair loops over the step's lists
-// (deterministic: every i is computed by one thread alone, and f(i) writes only i's results).
 namespace detail {
 // f(i) for i in [first, last): one copy of f's code for every path of forEachParticleBalanced.
 // Inlined into each path, f was compiled twice, and GCC may contract a product and a sum into
@@ -517,6 +514,9 @@ template <class F> [[gnu::noinline]] void forEachInRange(std::size_t first, std:
 }
 } // namespace detail
 
+// Calls f(i) for every fluid particle i in parallel, each thread over its workRange and then
+// over what is left of the others' (claimChunk): for pair loops over the step's lists
+// (deterministic: every i is computed by one thread alone, and f(i) writes only i's results).
 template <class F>
 void forEachParticleBalanced(const NeighbourSearch& search, F&& f,
                              NeighbourSearch::PairWork work = NeighbourSearch::PairWork::FluidAndWall) {
