@@ -22,9 +22,10 @@ fi
 out=${FUZZ_DIR:-$root/build-fuzz}
 command -v clang++ > /dev/null || { echo "clang++ is needed (apt-get install clang libclang-rt-14-dev)"; exit 1; }
 if [ ! -f "$out/CMakeCache.txt" ]; then
+    mkdir -p "$out" # its configure log inside it, not beside it in the source tree
     CXX=clang++ cmake -S "$root" -B "$out" -DSPINDRIFT_FUZZ=ON -DSPINDRIFT_TESTS=OFF -DSPINDRIFT_OPENMP=OFF \
-        -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" > "$out.configure.log" 2>&1 ||
-        { cat "$out.configure.log"; exit 1; }
+        -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" > "$out/configure.log" 2>&1 ||
+        { cat "$out/configure.log"; exit 1; }
 fi
 cmake --build "$out" -j "$(nproc)" --target fuzzDictionary fuzzCaseSetUp fuzzSchemes > "$out/build.log" 2>&1 ||
     { tail -n 50 "$out/build.log"; exit 1; }
