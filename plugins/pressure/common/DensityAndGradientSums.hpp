@@ -35,6 +35,17 @@ struct DensityAndGradientSumsTerm {
     }
 };
 
+// out(i, sum) with DensityAndGradientSumsTerm's sums of every fluid particle i at positions x, on
+// the lists of the search's last build (which must be at x); the pair gradients fill the scene's
+// cache, valid from then on for that build (the density pass of pcisph, iisph and dfsph).
+template <class Out> void densityAndGradientSums(Scene& s, const std::vector<Vec3>& x, Out&& out) {
+    s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
+    s.gradients.invalidate();
+    forEachPairSum(s, x, DensityAndGradientSumsTerm{s.gradients.values.data()},
+                   [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) { out(i, sum); });
+    s.gradients.build = s.search.builds();
+}
+
 // Σ_j (u_i − u_j)·∇W_ij over the fluid pairs, for any per-particle vector u (a velocity: the
 // fluid part of Dρ_i/Dt over m; an acceleration: that of a displacement over Δt²), with the
 // cached gradients (forEachCachedPairSum; DensityAndGradientSumsTerm's sums give the walls'

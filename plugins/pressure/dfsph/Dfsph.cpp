@@ -270,8 +270,6 @@ private:
         auto& alphaOverRho = *alphaOverRho_;
         auto& wallGradient = *wallGradient_;
         auto& wallRate = *wallRate_;
-        s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
-        s.gradients.invalidate();
         const auto factors = [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
             rho[i] = m * (w0 + sum.w) + sum.wall;
             wallGradient[i] = sum.wallGrad;
@@ -280,9 +278,7 @@ private:
             const Scalar denominator = g.squaredNorm() + m * m * sum.squares;
             alphaOverRho[i] = denominator > tiny ? 1 / denominator : Scalar(0);
         };
-        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.gradients.values.data()},
-                       [&](std::size_t i, const auto&, const auto& sum) { factors(i, sum); });
-        s.gradients.build = s.search.builds();
+        densityAndGradientSums(s, x, factors);
     }
 
     // The check of checkPositions: the neighbour search, density, α and gradients at the

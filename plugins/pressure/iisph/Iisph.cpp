@@ -127,22 +127,18 @@ public:
         wallGrad_.resize(n);
         pressureWallGrad_.resize(n);
         wallRate_.resize(n);
-        s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
-        s.gradients.invalidate();
-        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.gradients.values.data()},
-                       [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) {
-                           const Scalar r = m * (w0 + sum.w) + sum.wall;
-                           rho[i] = r;
-                           invRho2_[i] = 1 / (r * r);
-                           const Vec3 fluid = m * sum.grad;
-                           const Vec3 pressureGrad = sum.wallGrad + sum.mirroredGrad; // Σ_b (1 + μ_b) M_b ∇W_ib
-                           wallGrad_[i] = sum.wallGrad;
-                           pressureWallGrad_[i] = pressureGrad;
-                           wallRate_[i] = sum.wallRate;
-                           const Scalar bracket = (fluid + pressureGrad).dot(fluid + sum.wallGrad) + m * m * sum.squares;
-                           diagonal_[i] = bracket > tiny ? r * r / bracket : Scalar(0); // −Δt²/a_ii
-                       });
-        s.gradients.build = s.search.builds();
+        densityAndGradientSums(s, x, [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
+            const Scalar r = m * (w0 + sum.w) + sum.wall;
+            rho[i] = r;
+            invRho2_[i] = 1 / (r * r);
+            const Vec3 fluid = m * sum.grad;
+            const Vec3 pressureGrad = sum.wallGrad + sum.mirroredGrad; // Σ_b (1 + μ_b) M_b ∇W_ib
+            wallGrad_[i] = sum.wallGrad;
+            pressureWallGrad_[i] = pressureGrad;
+            wallRate_[i] = sum.wallRate;
+            const Scalar bracket = (fluid + pressureGrad).dot(fluid + sum.wallGrad) + m * m * sum.squares;
+            diagonal_[i] = bracket > tiny ? r * r / bracket : Scalar(0); // −Δt²/a_ii
+        });
     }
 
     void addPressureAcceleration(Scene& s, Scalar dt) override {

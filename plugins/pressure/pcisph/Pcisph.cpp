@@ -92,13 +92,9 @@ public:
         auto& rho = s.fluid.density();
         const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0();
         rho.resize(x.size());
-        s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
-        s.gradients.invalidate();
-        forEachPairSum(s, x, DensityAndGradientSumsTerm{s.gradients.values.data()},
-                       [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) {
-                           rho[i] = m * (w0 + sum.w) + sum.wall;
-                       });
-        s.gradients.build = s.search.builds();
+        densityAndGradientSums(s, x, [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
+            rho[i] = m * (w0 + sum.w) + sum.wall;
+        });
     }
 
     void addPressureAcceleration(Scene& s, Scalar dt) override {
