@@ -4,8 +4,13 @@
 
 #include <boost/dll/shared_library.hpp>
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
+#include <cstring>
 #include <dlfcn.h>
+#include <fstream>
+#include <limits>
+#include <link.h> // ElfW: the ELF types of this machine's class
 #include <set>
 #include <sstream>
 
@@ -117,9 +122,112 @@ std::string abiMismatch(const boost::dll::shared_library& library, const fs::pat
            describe(pluginAbiTag) + ": rebuild the plugin against this installation";
 }
 
+// The ELF machine this code runs on (0: not checked).
+constexpr std::uint16_t hostMachine =
+#if defined(__x86_64__)
+    EM_X86_64;
+#elif defined(__aarch64__)
+    EM_AARCH64;
+#elif defined(__i386__)
+    EM_386;
+#elif defined(__arm__)
+    EM_ARM;
+#elif defined(__powerpc64__)
+    EM_PPC64;
+#elif defined(__riscv)
+    EM_RISCV;
+#else
+    0;
+#endif
+
+std::string machineName(unsigned machine) {
+    switch (machine) {
+    case EM_X86_64: return "x86-64";
+    case EM_AARCH64: return "AArch64";
+    case EM_386: return "i386";
+    case EM_ARM: return "ARM";
+    case EM_PPC64: return "PowerPC64";
+    case EM_RISCV: return "RISC-V";
+    default: return "ELF machine " + std::to_string(machine);
+    }
+}
+
 } // namespace
 
+std::string unloadableLibrary(const fs::path& file) {
+    // dlopen maps a library's segments where its program headers say they are in the file; pages
+    // past the end of a file cut short are a SIGBUS when the loader touches them, which nothing
+    // can catch. So everything the headers describe must lie within the file, before dlopen.
+    using Ehdr = ElfW(Ehdr);
+    using Phdr = ElfW(Phdr);
+    using Shdr = ElfW(Shdr);
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (ec) return "cannot read it: " + ec.message();
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return "cannot open it";
+    const auto readAt = [&](std::uintmax_t offset, void* out, std::size_t bytes) {
+        in.clear();
+        in.seekg(std::streamoff(offset));
+        in.read(static_cast<char*>(out), std::streamsize(bytes));
+        return bool(in);
+    };
+    unsigned char ident[EI_NIDENT] = {};
+    if (size < EI_NIDENT || !readAt(0, ident, EI_NIDENT) || std::memcmp(ident, ELFMAG, SELFMAG) != 0)
+        return "it is not a shared library (no ELF header; " + std::to_string(size) + " bytes)";
+    constexpr unsigned char hostClass = sizeof(void*) == 8 ? ELFCLASS64 : ELFCLASS32;
+    if (ident[EI_CLASS] != hostClass)
+        return std::string("it is a ") + (ident[EI_CLASS] == ELFCLASS32 ? "32" : ident[EI_CLASS] == ELFCLASS64 ? "64" : "?") +
+               "-bit library; this spindrift is " + (hostClass == ELFCLASS64 ? "64" : "32") + "-bit";
+    constexpr unsigned char hostData = std::endian::native == std::endian::little ? ELFDATA2LSB : ELFDATA2MSB;
+    if (ident[EI_DATA] != hostData) return "it is a library of the other byte order";
+    const auto cutShort = [&](const char* what, std::uintmax_t end) {
+        return "it is cut short (a copy or a build interrupted?): the file has " + std::to_string(size) +
+               " bytes, but " + what + " ends at byte " + std::to_string(end);
+    };
+    Ehdr header{};
+    if (size < sizeof header || !readAt(0, &header, sizeof header)) return cutShort("its ELF header", sizeof header);
+    if (header.e_type != ET_DYN)
+        return header.e_type == ET_EXEC  ? "it is an executable, not a shared library"
+               : header.e_type == ET_REL ? "it is an object file (.o), not a shared library"
+                                         : "it is not a shared library (ELF type " + std::to_string(header.e_type) + ")";
+    if (hostMachine != 0 && header.e_machine != hostMachine)
+        return "it is built for " + machineName(header.e_machine) + "; this machine is " + machineName(hostMachine);
+    // a table of 'count' entries of 'entrySize' bytes at 'offset' ("" when it lies within the file)
+    const auto tableEnd = [&](std::uintmax_t offset, std::uintmax_t count, std::uintmax_t entrySize) -> std::uintmax_t {
+        if (offset <= size && count <= (size - offset) / entrySize) return 0;
+        return count > (std::numeric_limits<std::uintmax_t>::max() - offset) / entrySize
+                   ? std::numeric_limits<std::uintmax_t>::max()
+                   : offset + count * entrySize;
+    };
+    if (header.e_phnum == 0 || header.e_phentsize != sizeof(Phdr)) return "it has no program headers to load";
+    if (const auto end = tableEnd(header.e_phoff, header.e_phnum, sizeof(Phdr)))
+        return cutShort("its program header table", end);
+    for (unsigned k = 0; k < header.e_phnum; ++k) {
+        Phdr segment{};
+        if (!readAt(header.e_phoff + std::uintmax_t(k) * sizeof(Phdr), &segment, sizeof segment))
+            return cutShort("its program header table", header.e_phoff + (k + 1) * sizeof(Phdr));
+        if (const auto end = segment.p_filesz > 0 ? tableEnd(segment.p_offset, segment.p_filesz, 1) : 0)
+            return cutShort(segment.p_type == PT_LOAD ? "a segment it loads" : "a segment it describes", end);
+    }
+    if (header.e_shoff != 0) {
+        if (header.e_shentsize != sizeof(Shdr)) return "its section header table is malformed";
+        std::uintmax_t sections = header.e_shnum;
+        if (sections == 0) { // 65280 sections or more: the count is section 0's size
+            Shdr first{};
+            if (tableEnd(header.e_shoff, 1, sizeof(Shdr)) || !readAt(header.e_shoff, &first, sizeof first))
+                return cutShort("its section header table", header.e_shoff + sizeof(Shdr));
+            sections = first.sh_size;
+        }
+        if (const auto end = tableEnd(header.e_shoff, sections, sizeof(Shdr)))
+            return cutShort("its section header table", end);
+    }
+    return {};
+}
+
 ModelRegistry::Loaded ModelRegistry::open(const fs::path& file, const SourceLocation& where) const {
+    if (const std::string problem = unloadableLibrary(file); !problem.empty())
+        throw InputError(where, "cannot load plugin library '" + file.string() + "': " + problem);
     auto library = std::make_shared<Library>();
     try {
         library->handle.load(file.string(), boost::dll::load_mode::rtld_now);
@@ -154,14 +262,31 @@ void ModelRegistry::add(const Loaded& l) {
     log::info("Loaded " + l.kind + " plugin '" + l.name + "' from " + l.file.string());
 }
 
-void ModelRegistry::loadUserLibrary(const std::string& file, const fs::path& baseDir,
-                                    const SourceLocation& where) {
-    std::vector<fs::path> candidates;
+std::vector<fs::path> ModelRegistry::userLibraryDirectories(const fs::path& caseDir) const {
+    std::vector<fs::path> dirs{caseDir};
+    dirs.insert(dirs.end(), searchPath_.begin(), searchPath_.end());
+    if (const char* env = std::getenv("LD_LIBRARY_PATH")) {
+        std::stringstream s(env);
+        for (std::string dir; std::getline(s, dir, ':');)
+            if (!dir.empty()) dirs.emplace_back(dir);
+    }
+    return dirs;
+}
+
+void ModelRegistry::loadUserLibrary(const std::string& file, const fs::path& caseDir, const SourceLocation& where) {
     const fs::path p(file);
-    if (p.is_absolute()) candidates.push_back(p);
-    else {
-        candidates.push_back(baseDir / p);
-        for (const auto& dir : searchPath_) candidates.push_back(dir / p);
+    // OpenFOAM's `libs` names: "libmyKernel.so", or "myKernel" / "libmyKernel" for it
+    std::vector<fs::path> names{p};
+    if (!p.has_parent_path() && p.extension() != ".so" && file.find(".so.") == std::string::npos) {
+        names.push_back(file.rfind("lib", 0) == 0 ? file + ".so" : "lib" + file + ".so");
+    }
+    std::vector<fs::path> candidates, dirs;
+    if (p.is_absolute()) {
+        candidates.push_back(p);
+    } else {
+        dirs = userLibraryDirectories(caseDir);
+        for (const auto& dir : dirs)
+            for (const auto& name : names) candidates.push_back(dir / name);
     }
     for (const auto& c : candidates) {
         std::error_code ec;
@@ -173,8 +298,13 @@ void ModelRegistry::loadUserLibrary(const std::string& file, const fs::path& bas
             return;
         }
     }
-    throw InputError(where, "cannot find library '" + file + "' (looked in the case directory and " +
-                                std::to_string(searchPath_.size()) + " plugin directories)", "libs");
+    std::string looked = "no such file";
+    if (!p.is_absolute()) {
+        looked = "looked in";
+        for (std::size_t k = 0; k < dirs.size(); ++k) looked += (k ? ", " : " ") + dirs[k].string();
+        looked += ": the case directory, SPINDRIFT_PLUGIN_PATH, the plugin directories and LD_LIBRARY_PATH";
+    }
+    throw InputError(where, "cannot find library '" + file + "' (" + looked + ")", "libs");
 }
 
 std::string ModelRegistry::typeOf(const std::string& kind, const Dictionary& dict) const {

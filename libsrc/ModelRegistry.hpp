@@ -5,10 +5,12 @@
 // build tree's or the installation's, wherever it was installed) and
 // <executable>/../lib/spindrift/plugins. Only the libraries a case names are opened; listing the
 // valid types reads file names, it opens nothing. User plugins named in controlDict `libs (...)`
-// are opened explicitly and register the kind and name they export. Before anything in a
-// library is used, its ABI tag (interface version and precision, Types.hpp) must equal the
-// core's, and a library found by file name must export that kind and name; otherwise it is
-// refused with a message naming the file. Libraries stay loaded until exit.
+// are opened explicitly (looked for in the case directory, the plugin path and LD_LIBRARY_PATH)
+// and register the kind and name they export. No file is given to dlopen before its ELF headers
+// are checked (unloadableLibrary: a truncated library would kill the process with SIGBUS inside
+// dlopen). Before anything in a library is used, its ABI tag (interface version and precision,
+// Types.hpp) must equal the core's, and a library found by file name must export that kind and
+// name; otherwise it is refused with a message naming the file. Libraries stay loaded until exit.
 #pragma once
 
 #include "BoundaryModel.hpp"
@@ -39,10 +41,15 @@ public:
     const std::vector<std::filesystem::path>& searchPath() const { return searchPath_; }
     void prependSearchDirectory(const std::filesystem::path& dir);
 
-    // Opens a user plugin library (controlDict `libs`); relative paths are tried against
-    // 'baseDir' and then the search path. Errors name 'where'.
-    void loadUserLibrary(const std::string& file, const std::filesystem::path& baseDir,
+    // Opens a user plugin library (controlDict `libs`). A relative name is looked for in
+    // userLibraryDirectories(caseDir), as OpenFOAM's `libs` are: "libmyKernel.so", or
+    // "myKernel" / "libmyKernel" for it. Errors name 'where' and, for a library not found,
+    // every directory looked in.
+    void loadUserLibrary(const std::string& file, const std::filesystem::path& caseDir,
                          const SourceLocation& where);
+    // The case directory, the plugin search path (SPINDRIFT_PLUGIN_PATH first), then the
+    // directories of LD_LIBRARY_PATH.
+    std::vector<std::filesystem::path> userLibraryDirectories(const std::filesystem::path& caseDir) const;
 
     // Valid type names of a kind (from file names on the search path + user libraries).
     std::vector<std::string> available(const std::string& kind) const;
@@ -91,5 +98,11 @@ private:
 };
 
 std::string pluginFileName(const std::string& kind, const std::string& name);
+
+// Why 'file' must not be given to dlopen ("" when it may): not an ELF shared object of this
+// machine's class, byte order and architecture, or cut short — a segment, the program headers or
+// the section header table ending past the end of the file (dlopen of a truncated library dies
+// of SIGBUS). Reads the headers only.
+std::string unloadableLibrary(const std::filesystem::path& file);
 
 } // namespace spindrift

@@ -2,6 +2,8 @@
 #include "TestSupport.hpp"
 
 #include <gtest/gtest.h>
+#include <cstdlib>
+#include <fstream>
 
 using namespace spindrift;
 
@@ -98,6 +100,95 @@ TEST(ModelRegistry, UserLibraryRegistersItsModel) {
     auto integrator = test::createModel<Integrator>("type leapfrog;", test::physicsFor(2));
     EXPECT_NE(integrator, nullptr);
     EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), 1u);
+}
+
+// The path of an in-tree plugin library on the search path.
+std::filesystem::path pluginFile(const std::string& fileName) {
+    for (const auto& dir : ModelRegistry::instance().searchPath())
+        if (std::filesystem::exists(dir / fileName)) return dir / fileName;
+    return {};
+}
+
+TEST(ModelRegistry, LibraryCutShortIsRefusedBeforeDlopen) {
+    // issue 33.2: a copy of a plugin cut short made dlopen die of SIGBUS (exit 135). Every cut,
+    // from nothing to one byte short, is refused with what is wrong, before dlopen is called.
+    const auto whole = pluginFile("libspindrift_kernel_wendlandC2.so");
+    ASSERT_FALSE(whole.empty());
+    EXPECT_EQ(unloadableLibrary(whole), "") << "the whole library is fine";
+    const std::string bytes = test::readFile(whole);
+    test::TempDir dir;
+    const auto size = bytes.size();
+    for (std::size_t cut : {std::size_t(0), std::size_t(3), std::size_t(16), std::size_t(63), std::size_t(64),
+                            std::size_t(200), size / 4, size / 2, size - 4096, size - 1}) {
+        const std::filesystem::path file = dir.path() / ("libcut" + std::to_string(cut) + ".so");
+        std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(cut));
+        const std::string why = unloadableLibrary(file);
+        EXPECT_FALSE(why.empty()) << "cut at " << cut;
+        if (cut >= 64) EXPECT_NE(why.find("it is cut short"), std::string::npos) << why;
+        if (cut >= 64) EXPECT_NE(why.find("the file has " + std::to_string(cut) + " bytes"), std::string::npos) << why;
+        // through the registry, as controlDict's libs: an InputError at the entry, no signal
+        try {
+            ModelRegistry::instance().loadUserLibrary(file.string(), dir.path(), {"controlDict", 9, 1});
+            ADD_FAILURE() << "loaded a library cut at " << cut;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("controlDict:9:1: error: cannot load plugin library '" + file.string() + "': "),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    EXPECT_TRUE(ModelRegistry::instance().loadedLibraries().empty());
+    // not an ELF file at all, and an object file
+    const auto text = dir.writeFile("libtext.so", "not a library\n");
+    EXPECT_EQ(unloadableLibrary(text), "it is not a shared library (no ELF header; 14 bytes)");
+    std::string object = bytes;
+    object[16] = 1; // e_type ET_REL (little-endian)
+    object[17] = 0;
+    std::ofstream(dir.path() / "libobject.so", std::ios::binary) << object;
+    EXPECT_EQ(unloadableLibrary(dir.path() / "libobject.so"), "it is an object file (.o), not a shared library");
+    std::string otherMachine = bytes;
+    otherMachine[18] = bytes[18] == 62 ? char(183) : char(62); // e_machine: AArch64 on x86-64, else x86-64
+    otherMachine[19] = 0;
+    std::ofstream(dir.path() / "libother.so", std::ios::binary) << otherMachine;
+    EXPECT_NE(unloadableLibrary(dir.path() / "libother.so").find("it is built for "), std::string::npos);
+}
+
+TEST(ModelRegistry, BareLibraryNamesAreFoundInTheCaseDirectoryThePluginPathAndLdLibraryPath) {
+    // issue 34.9: `libs ("libmyIntegrator.so")` and OpenFOAM's short `libs (myIntegrator)`
+    const auto leapfrog = pluginFile("libspindrift_integrator_leapfrog.so");
+    ASSERT_FALSE(leapfrog.empty());
+    test::TempDir dir;
+    const auto caseDir = dir.path() / "case";
+    std::filesystem::create_directories(caseDir);
+    std::filesystem::copy_file(leapfrog, caseDir / "libmyIntegrator.so");
+    auto& registry = ModelRegistry::instance();
+    registry.loadUserLibrary("myIntegrator", caseDir, {"controlDict", 3, 1});
+    ASSERT_EQ(registry.loadedLibraries().size(), 1u);
+    EXPECT_EQ(registry.loadedLibraries()[0], std::filesystem::canonical(caseDir / "libmyIntegrator.so").string());
+    registry.loadUserLibrary("libmyIntegrator.so", caseDir, {"controlDict", 3, 1}); // the same file: once
+    EXPECT_EQ(registry.loadedLibraries().size(), 1u);
+    // a directory of LD_LIBRARY_PATH (read when asked)
+    const auto libDir = dir.path() / "lib";
+    std::filesystem::create_directories(libDir);
+    std::filesystem::copy_file(pluginFile("libspindrift_integrator_velocityVerlet.so"), libDir / "libmyVerlet.so");
+    const char* previous = std::getenv("LD_LIBRARY_PATH");
+    const std::string saved = previous ? previous : "";
+    ::setenv("LD_LIBRARY_PATH", ("/nonexistent:" + libDir.string()).c_str(), 1);
+    registry.loadUserLibrary("libmyVerlet", dir.path() / "elsewhere", {"controlDict", 3, 1});
+    EXPECT_EQ(registry.loadedLibraries().size(), 2u);
+    // not found: every directory looked in, in order
+    try {
+        registry.loadUserLibrary("libnotThere.so", caseDir, {"controlDict", 4, 1});
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("controlDict:4:1: error: cannot find library 'libnotThere.so' (looked in " + caseDir.string() + ", "),
+                  std::string::npos)
+            << m;
+        for (const auto& d : registry.searchPath()) EXPECT_NE(m.find(d.string()), std::string::npos) << d << " in " << m;
+        EXPECT_NE(m.find("/nonexistent, " + libDir.string() + ": the case directory, SPINDRIFT_PLUGIN_PATH"), std::string::npos) << m;
+    }
+    if (previous) ::setenv("LD_LIBRARY_PATH", saved.c_str(), 1);
+    else ::unsetenv("LD_LIBRARY_PATH");
 }
 
 } // namespace
