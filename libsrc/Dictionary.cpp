@@ -504,6 +504,7 @@ public:
     void parseText(Dictionary& into, std::string text, const std::string& file) {
         bytesRead_ += text.size();
         Lexer lexer(std::move(text), file);
+        const Origin origin(*this);
         parseEntries(lexer, into, nullptr);
     }
 
@@ -586,17 +587,31 @@ public:
         return copy;
     }
 
-    // Adds an entry; a duplicate keyword replaces the earlier entry in place, except that a
-    // dictionary given again is merged into the earlier one (OpenFOAM's default #inputMode merge).
-    static void addEntry(Dictionary& d, Entry e) {
+    // Adds an entry read from the current origin. A keyword given twice by one origin (a file's
+    // own text, one #include, one `$dict;` merge) is an error naming both places: two walls of
+    // one name, a repeated endTime. An entry of another origin overrides (logged): a value
+    // replaces the earlier entry in place, a dictionary given again is merged into the earlier
+    // one, entry by entry (OpenFOAM's #inputMode merge) — `#include "defaults"` then changes.
+    void addEntry(Dictionary& d, Entry e) {
+        auto& origins = origins_[&d];
+        const auto [known, added] = origins.try_emplace(e.keyword, origin_);
         Entry* existing = d.find(std::string_view(e.keyword));
         if (!existing) {
             d.append(std::move(e));
-        } else if (existing->isDict() && e.isDict()) {
-            for (auto& sub : e.dict->entries_) addEntry(*existing->dict, std::move(sub));
-        } else {
-            *existing = std::move(e);
+            return;
         }
+        if (!added && known->second == origin_)
+            throw InputError(e.where, "duplicate entry '" + e.keyword + "' in " + d.name() + ": already given at " +
+                                          locationText(existing->where) + "; remove one of them",
+                             e.keyword);
+        known->second = origin_;
+        if (existing->isDict() && e.isDict()) {
+            for (auto& sub : e.dict->entries_) addEntry(*existing->dict, std::move(sub));
+            return;
+        }
+        log::info("    " + locationText(e.where) + ": '" + e.keyword + "' overrides the entry of " + d.name() +
+                  " at " + locationText(existing->where));
+        *existing = std::move(e);
     }
 
     // Replaces or appends, without merging (Dictionary::set, setDict).
@@ -609,6 +624,22 @@ public:
 
 private:
     enum class Added { ByReading, BySubstitution };
+
+    // Entries read while one lives come from one origin (a file's text, an #include, a `$dict;`
+    // merge); the previous origin is restored after.
+    class Origin {
+    public:
+        explicit Origin(DictionaryParser& parser) : parser_(parser), previous_(parser.origin_) {
+            parser.origin_ = ++parser.origins;
+        }
+        ~Origin() { parser_.origin_ = previous_; }
+        Origin(const Origin&) = delete;
+        Origin& operator=(const Origin&) = delete;
+
+    private:
+        DictionaryParser& parser_;
+        unsigned previous_;
+    };
 
     // Counts 'n' more tokens (keywords and value tokens) against maxTokens, and against
     // maxSubstitutedTokens too when `$name` adds them; 'cause' (called only for the error) says
@@ -820,6 +851,7 @@ private:
         static const std::string noKeyword;
         const CopyLimits limits{*this, scopes_.size() - 1, variable, noKeyword};
         auto copy = clone(*source.dict, dict.name_, dict.where_, &limits);
+        const Origin origin(*this);
         for (auto& e : copy->entries_) addEntry(dict, std::move(e));
     }
 
@@ -888,11 +920,17 @@ private:
         bytesRead_ += contents.size;
         ++includeDepth_;
         Lexer included(std::move(contents.text), file.string());
-        parseEntries(included, dict, nullptr);
+        {
+            const Origin origin(*this);
+            parseEntries(included, dict, nullptr);
+        }
         --includeDepth_;
     }
 
     std::vector<Dictionary*> scopes_;
+    // which origin gave each keyword of each dictionary filled (addEntry)
+    std::unordered_map<const Dictionary*, std::unordered_map<std::string, unsigned>> origins_;
+    unsigned origins = 0, origin_ = 0; // origins started, the current one
     int includeDepth_ = 0;
     std::size_t tokenCount_ = 0;       // against maxTokens
     std::size_t substitutedCount_ = 0; // against maxSubstitutedTokens

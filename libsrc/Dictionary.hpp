@@ -6,8 +6,12 @@
 // including file; `#includeIfPresent` ignores a missing file), `$name` substitution (searched in
 // the current scope, then enclosing scopes; `$a.b` looks into sub-dictionary a; `kw $dict;`
 // copies a dictionary, `$dict;` alone merges its entries into the current scope; a substituted
-// keyword counts as used). A later duplicate keyword overrides the earlier one; a duplicate
-// dictionary is merged into the earlier one (OpenFOAM's default). Outside parentheses a value
+// keyword counts as used). A keyword given twice in one dictionary by the same text (a file, one
+// #include, one `$dict;` merge) is an error naming both lines: two walls `tank`, a repeated
+// `endTime`. An entry overriding one that an #include or a `$dict;` merge brought in is logged
+// ("controlDict:20:1: 'endTime' overrides the entry of controlDict at common:3:1"): a value
+// replaces it, a dictionary is merged into it entry by entry (OpenFOAM's #inputMode merge), so
+// `#include "defaults"` followed by changes works as in OpenFOAM. Outside parentheses a value
 // ends on its line: a value token on a new line is reported as a missing ';'. Every parse error
 // throws InputError naming file:line:column (columns count UTF-8 characters, not bytes), and the
 // keyword when it happens in a keyword's value.

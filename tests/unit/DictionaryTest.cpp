@@ -241,26 +241,54 @@ TEST(DictionarySyntax, RecordsExactLocationsOfKeywordsAndValues) {
     EXPECT_EQ(d.locationOf("nothing").file, testFile);
 }
 
-TEST(DictionarySyntax, LaterDuplicateKeywordOverridesEarlier) {
-    const Dictionary d = parse("a 1;\nb 2;\na 3;\n");
-    EXPECT_EQ(d.get<int>("a"), 3);
-    EXPECT_EQ(d.keywords(), (std::vector<std::string>{"a", "b"}));
-    EXPECT_EQ(d.locationOf("a").line, 3);
+TEST(DictionarySyntax, KeywordGivenTwiceIsAnErrorNamingBothLines) {
+    // issue 33.12: a repeated endTime, two walls 'tank' (the second silently replaced the first)
+    EXPECT_EQ(errorOf([] { parse("a 1;\nb 2;\na 3;\n"); }),
+              testFile + ":3:1: error: duplicate entry 'a' in testDict: already given at " + testFile +
+                  ":1:1; remove one of them (keyword 'a')");
+    EXPECT_EQ(errorOf([] { parse("walls\n{\n    tank { type box; }\n    tank { type container; }\n}\n"); }),
+              testFile + ":4:5: error: duplicate entry 'tank' in testDict.walls: already given at " + testFile +
+                  ":3:5; remove one of them (keyword 'tank')");
+    // a value and a dictionary of one name, either way round
+    EXPECT_CONTAINS(errorOf([] { parse("a { x 1; }\na 2;\n"); }), testFile + ":2:1: error: duplicate entry 'a'");
+    EXPECT_CONTAINS(errorOf([] { parse("b 3;\nb { y 4; }\n"); }), testFile + ":2:1: error: duplicate entry 'b'");
+    // inside one sub-dictionary, and in a list-valued entry (libs)
+    EXPECT_CONTAINS(errorOf([] { parse("p { gamma 7; gamma 8; }\n"); }), testFile + ":1:14: error: duplicate entry 'gamma' in testDict.p");
+    EXPECT_CONTAINS(errorOf([] { parse("libs (\"a.so\");\nlibs (\"b.so\");\n"); }), "duplicate entry 'libs'");
+    // the same keyword in different dictionaries is no duplicate
+    EXPECT_NO_THROW(parse("a 1;\np { a 2; q { a 3; } }\n"));
 }
 
-TEST(DictionarySyntax, ValueOverridesDictionaryAndViceVersa) {
-    const Dictionary d = parse("a { x 1; }\na 2;\nb 3;\nb { y 4; }\n");
-    EXPECT_EQ(d.get<int>("a"), 2);
-    EXPECT_EQ(d.subDict("b").get<int>("y"), 4);
-}
-
-TEST(DictionarySyntax, DuplicateDictionaryIsMergedIntoTheEarlierOne) {
-    const Dictionary d = parse("p { type wcsph; gamma 7; }\np { gamma 8; c0 10; }\n");
-    const Dictionary& p = d.subDict("p");
+TEST(DictionarySyntax, AnEntryOverridingAnIncludedOneIsLoggedAndWins) {
+    log::setQuiet(false);
+    // OpenFOAM's `#include "defaults"` then changes: the later entry wins, a dictionary given again
+    // is merged into the included one entry by entry, and each override is logged with both places
+    TempDir dir;
+    dir.writeFile("system/defaults", "endTime 1;\npressure { type wcsph; gamma 7; }\n");
+    const fs::path file = dir.writeFile("system/controlDict",
+                                        "#include \"defaults\"\nendTime 2;\npressure { gamma 8; c0 10; }\n");
+    testing::internal::CaptureStdout();
+    const Dictionary d = Dictionary::fromFile(file);
+    const std::string log = testing::internal::GetCapturedStdout();
+    EXPECT_EQ(d.get<int>("endTime"), 2);
+    EXPECT_EQ(d.locationOf("endTime").line, 2);
+    const Dictionary& p = d.subDict("pressure");
     EXPECT_EQ(p.get<std::string>("type"), "wcsph");
     EXPECT_EQ(p.get<int>("gamma"), 8);
     EXPECT_EQ(p.get<int>("c0"), 10);
     EXPECT_EQ(p.keywords(), (std::vector<std::string>{"type", "gamma", "c0"}));
+    EXPECT_EQ(d.keywords(), (std::vector<std::string>{"endTime", "pressure"})) << "an override keeps the first place";
+    EXPECT_CONTAINS(log, file.string() + ":2:1: 'endTime' overrides the entry of controlDict at " +
+                             (dir.path() / "system/defaults").string() + ":1:1");
+    EXPECT_CONTAINS(log, file.string() + ":3:12: 'gamma' overrides the entry of controlDict.pressure at ");
+    // an included file's own duplicates are still an error
+    dir.writeFile("system/twice", "endTime 1;\nendTime 3;\n");
+    const fs::path bad = dir.writeFile("system/bad", "#include \"twice\"\n");
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromFile(bad); }),
+                    (dir.path() / "system/twice").string() + ":2:1: error: duplicate entry 'endTime'");
+    // and an entry given twice after the include too
+    const fs::path after = dir.writeFile("system/after", "#include \"defaults\"\nendTime 2;\nendTime 3;\n");
+    EXPECT_CONTAINS(errorOf([&] { Dictionary::fromFile(after); }), after.string() + ":3:1: error: duplicate entry 'endTime'");
 }
 
 TEST(DictionarySyntax, StraySemicolonsAreIgnored) {
@@ -802,12 +830,14 @@ TEST(DictionaryLimits, TwoHundredThousandKeywordsParseAndAreFound) {
     constexpr int n = 200000;
     std::string text;
     for (int i = 0; i < n; ++i) text += "key" + std::to_string(i) + " " + std::to_string(i) + ";\n";
-    text += "key7 -7;\nlast $key199999;\n";
+    text += "more { key7 -7; }\n$more;\nlast $key199999;\n"; // a merge overrides key7
     const Dictionary d = parse(text);
     const std::vector<std::string> keywords = d.keywords();
-    ASSERT_EQ(keywords.size(), std::size_t(n) + 1);
-    EXPECT_EQ(keywords[7], "key7"); // a duplicate keeps the place of the first
+    ASSERT_EQ(keywords.size(), std::size_t(n) + 2);
+    EXPECT_EQ(keywords[7], "key7"); // an override keeps the place of the first
+    EXPECT_EQ(keywords[std::size_t(n)], "more");
     EXPECT_EQ(keywords.back(), "last");
+    d.subDict("more");
     for (int i = 0; i < n; ++i) ASSERT_EQ(d.get<int>(keywords[std::size_t(i)]), i == 7 ? -7 : i) << keywords[std::size_t(i)];
     EXPECT_EQ(d.get<int>("last"), n - 1);
     EXPECT_NO_THROW(d.checkAllKeywordsUsed());
@@ -853,16 +883,16 @@ TEST(DictionaryLimits, CopiesOfDictionariesStopAtTheSubstitutionBound) {
 }
 
 TEST(DictionaryLimits, ReadingStopsAtTheTokenBound) {
-    // 11 values of a million tokens each (a later one replaces the earlier): every token read counts
-    std::string line = "v (";
-    for (int i = 0; i < 999'999; ++i) line += " 1";
-    line += ");\n";
+    // 11 values of a million tokens each: every token read counts
+    std::string values = " (";
+    for (int i = 0; i < 999'999; ++i) values += " 1";
+    values += ");\n";
     std::string text;
-    for (int i = 0; i < 11; ++i) text += line;
+    for (int i = 0; i < 11; ++i) text.append("v").append(std::to_string(i)).append(values);
     const std::string message = errorOf([&] { Dictionary::fromString(text, "many"); });
     EXPECT_CONTAINS(message, "many:10:");
-    EXPECT_CONTAINS(message, "error: the value of 'v' makes the dictionary exceed 10000000 tokens (keywords, values and "
-                             "sub-dictionaries; read, #included or substituted) (keyword 'v')");
+    EXPECT_CONTAINS(message, "error: the value of 'v9' makes the dictionary exceed 10000000 tokens (keywords, values and "
+                             "sub-dictionaries; read, #included or substituted) (keyword 'v9')");
 }
 
 TEST(DictionaryFiles, FileOverTheSizeLimitGivesItsSizeAndTheLimit) {
