@@ -2,8 +2,12 @@
 
 #include "Log.hpp"
 
+#include <Eigen/Geometry> // cross, unitOrthogonal
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 namespace spindrift {
@@ -44,6 +48,45 @@ template <class F> void forEachLatticePoint(const Vec3& lo, const Vec3& hi, Scal
             }
 }
 
+// A wall's or block's name: it names a file (<wall>.vtp) and a block of the .pvd (XML), so letters,
+// digits, '_', '-' and '.', starting with a letter or '_' (a word of OpenFOAM's that needs no
+// quoting or escaping anywhere), at most 128 characters.
+void checkName(const Dictionary& parent, const std::string& name, const char* what) {
+    const auto allowed = [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+    };
+    const bool valid = !name.empty() && name.size() <= 128 &&
+                       (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                       std::all_of(name.begin(), name.end(), allowed);
+    if (!valid)
+        throw InputError(parent.locationOf(name),
+                         std::string(what) + " name '" + name +
+                             "' is not a plain word: use letters, digits, '_', '-' and '.', starting with a letter "
+                             "or '_' (at most 128 characters; it names " +
+                             (std::string(what) == "wall" ? "the file " + name + ".vtp and its block in the .pvd)"
+                                                          : "the block in messages)"),
+                         name);
+}
+
+// Makes the box a whole number of spacings along each axis (its max moved to min + round(size/Δx)
+// Δx), with a warning at its entry when it was not: the lattice then fills it face to face.
+void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedName, Scalar dx, int dim) {
+    for (int a = 0; a < dim; ++a) {
+        const Scalar cells = std::round((box.max[a] - box.min[a]) / dx);
+        // (the tolerance allows for the rounding of a float build as well)
+        const Scalar tolerance = std::max(Scalar(1e-6) * dx, 64 * std::numeric_limits<Scalar>::epsilon() *
+                                                                 (std::abs(box.min[a]) + std::abs(box.max[a])));
+        if (std::abs(cells * dx - (box.max[a] - box.min[a])) > tolerance) {
+            std::ostringstream s;
+            s << scopedName << ": size along " << "xyz"[a] << " (" << box.max[a] - box.min[a]
+              << ") is not a multiple of particleSpacing " << dx << "; the wall is placed at max " << "xyz"[a] << " = "
+              << box.min[a] + cells * dx;
+            log::warning(locatedMessage(entry.locationOf("max"), "", s.str()));
+            box.max[a] = box.min[a] + cells * dx;
+        }
+    }
+}
+
 int faceIndex(const std::string& face) {
     static const char* names[6] = {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"};
     for (int i = 0; i < 6; ++i)
@@ -52,6 +95,126 @@ int faceIndex(const std::string& face) {
 }
 
 } // namespace
+
+bool SampledWall::occupies(const Vec3& p, int dim, Scalar margin) const {
+    const Box inner{min, max};
+    if (!container) return inner.contains(p, dim, -margin);
+    // the shell: within 'thickness' outside the inner box, not inside it, not beyond an open face
+    if (!Box{min - Vec3::Constant(thickness), max + Vec3::Constant(thickness)}.contains(p, dim, -margin)) return false;
+    bool inShell = false;
+    for (int a = 0; a < dim; ++a) {
+        if (p[a] < min[a] - margin) {
+            if (open[2 * a]) return false;
+            inShell = true;
+        }
+        if (p[a] > max[a] + margin) {
+            if (open[2 * a + 1]) return false;
+            inShell = true;
+        }
+    }
+    return inShell;
+}
+
+void OccupiedSpace::beginRegion(const std::vector<Vec3>& placed, const Vec3& lo, const Vec3& hi) {
+    placed_ = &placed;
+    begin_ = placed.size();
+    lo_ = lo - Vec3::Constant(2 * dx_);
+    hi_ = hi + Vec3::Constant(2 * dx_);
+    for (int a = 0; a < 3; ++a) cells_[a] = a < dim_ ? long(std::ceil((hi_[a] - lo_[a]) / dx_)) + 1 : 1;
+    near_.clear();
+    for (const Region& r : regions_) {
+        bool touches = true;
+        for (int a = 0; a < dim_; ++a) touches = touches && r.lo[a] <= hi_[a] && r.hi[a] >= lo_[a];
+        if (!touches) continue;
+        long c[3];
+        for (std::size_t k = r.begin; k < r.end; ++k)
+            if (cellOf(placed[k], c)) near_.emplace_back(key(c), k);
+    }
+    std::sort(near_.begin(), near_.end());
+}
+
+void OccupiedSpace::endRegion(const std::vector<Vec3>& placed) {
+    if (placed.size() == begin_) return;
+    Vec3 lo = placed[begin_], hi = lo;
+    for (std::size_t k = begin_; k < placed.size(); ++k) {
+        lo = lo.cwiseMin(placed[k]);
+        hi = hi.cwiseMax(placed[k]);
+    }
+    regions_.push_back({lo, hi, begin_, placed.size()});
+}
+
+bool OccupiedSpace::cellOf(const Vec3& p, long c[3]) const {
+    for (int a = 0; a < 3; ++a) {
+        if (a >= dim_) {
+            c[a] = 0;
+            continue;
+        }
+        const Scalar s = (p[a] - lo_[a]) / dx_;
+        if (!(s >= 0 && s < Scalar(cells_[a]))) return false;
+        c[a] = long(s);
+    }
+    return true;
+}
+
+std::uint64_t OccupiedSpace::key(const long c[3]) const {
+    return (std::uint64_t(c[2]) * std::uint64_t(cells_[1]) + std::uint64_t(c[1])) * std::uint64_t(cells_[0]) +
+           std::uint64_t(c[0]);
+}
+
+bool OccupiedSpace::filled(const Vec3& p) const {
+    if (near_.empty()) return false;
+    long c[3];
+    if (!cellOf(p, c)) return false;
+    const Scalar reach2 = Scalar(0.999 * 0.999) * dx_ * dx_;
+    long n[3];
+    for (int dz = (dim_ == 3 ? -1 : 0); dz <= (dim_ == 3 ? 1 : 0); ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                n[0] = c[0] + dx;
+                n[1] = c[1] + dy;
+                n[2] = c[2] + dz;
+                if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= cells_[0] || n[1] >= cells_[1] || n[2] >= cells_[2])
+                    continue;
+                const std::uint64_t k = key(n);
+                for (auto it = std::lower_bound(near_.begin(), near_.end(), std::make_pair(k, std::size_t(0)));
+                     it != near_.end() && it->first == k; ++it)
+                    if (((*placed_)[it->second] - p).squaredNorm() < reach2) return true;
+            }
+    return false;
+}
+
+std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar dx, int dim) {
+    const std::size_t n = positions.size();
+    std::vector<Scalar> depth(n, Scalar(0));
+    if (n == 0 || !(up.norm() > 0)) return depth;
+    // two directions across 'up' (one in 2D): a particle's column is its cell of Δx in them
+    Vec3 across1 = up.unitOrthogonal();
+    if (dim == 2) across1 = Vec3(up[1], -up[0], 0).normalized();
+    const Vec3 across2 = up.cross(across1);
+    struct Item {
+        long c1, c2;
+        Scalar height;
+        std::size_t index;
+    };
+    std::vector<Item> items(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3& p = positions[i];
+        items[i] = {std::lround(p.dot(across1) / dx), dim == 3 ? std::lround(p.dot(across2) / dx) : 0L, p.dot(up), i};
+    }
+    // each column from its top down
+    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+        return a.c1 != b.c1 ? a.c1 < b.c1 : a.c2 != b.c2 ? a.c2 < b.c2 : a.height > b.height;
+    });
+    const Scalar gap = Scalar(1.5) * dx;
+    Scalar surface = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const Item& it = items[k];
+        const bool newColumn = k == 0 || it.c1 != items[k - 1].c1 || it.c2 != items[k - 1].c2;
+        if (newColumn || items[k - 1].height - it.height > gap) surface = it.height + dx / 2;
+        depth[it.index] = surface - it.height;
+    }
+    return depth;
+}
 
 ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, int dim) {
     // lattice points in a box (in double: a count beyond any integer type must not overflow)
@@ -63,7 +226,11 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
     ParticleEstimate e;
     const auto add = [&](double n, const std::string& name, const SourceLocation& where) {
         e.count += n;
-        if (n > e.largest) e = {e.count, n, name, where};
+        if (n > e.largest) {
+            e.largest = n;
+            e.largestName = name;
+            e.largestAt = where;
+        }
     };
     if (const Dictionary* walls = geometry.findDict("walls"))
         for (const auto& name : walls->keywords()) {
@@ -83,7 +250,9 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
     if (const Dictionary* fluid = geometry.findDict("fluid"))
         for (const auto& name : fluid->keywords()) {
             const Box box = readBox(fluid->subDict(name), dim);
-            add(points(box.min, box.max), "fluid." + name, fluid->locationOf(name));
+            const double n = points(box.min, box.max);
+            add(n, "fluid." + name, fluid->locationOf(name));
+            e.fluid += n;
         }
     return e;
 }
@@ -101,12 +270,18 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             const int layers = w.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
             const Scalar L = layers * dx;
+            checkName(*walls, name, "wall");
             if (name == "fluid")
                 throw InputError(walls->locationOf(name), "a wall may not be called 'fluid' (the fluid's own "
                                                           "output is fluid.vtp)", name);
-            out.walls.push_back({name, {}, w.findDict("motion")});
+            SampledWall& sampled = out.walls.emplace_back();
+            sampled.name = name;
+            sampled.where = walls->locationOf(name);
+            sampled.motion = w.findDict("motion");
+            sampled.container = type == "container";
+            sampled.thickness = L;
             w.markUsed("motion");
-            std::vector<Vec3>& wallPositions = out.walls.back().positions;
+            std::vector<Vec3>& wallPositions = sampled.positions;
             if (type == "container") {
                 containers.emplace_back(name, box);
                 bool open[6] = {false, false, false, false, false, false};
@@ -119,20 +294,12 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                     open[f] = true;
                 }
                 // Inner extent must be a whole number of spacings for the lattice to continue.
-                Vec3 lo = box.min, hi = box.max;
-                for (int a = 0; a < dim; ++a) {
-                    const Scalar cells = std::round((hi[a] - lo[a]) / dx);
-                    // (the tolerance allows for the rounding of a float build as well)
-                    const Scalar tolerance = std::max(Scalar(1e-6) * dx, 64 * std::numeric_limits<Scalar>::epsilon() *
-                                                                             (std::abs(lo[a]) + std::abs(hi[a])));
-                    if (std::abs(cells * dx - (hi[a] - lo[a])) > tolerance) {
-                        std::ostringstream s;
-                        s << "walls." << name << ": size along " << "xyz"[a] << " is not a multiple of "
-                          << "particleSpacing; the wall is placed at " << lo[a] + cells * dx;
-                        log::warning(s.str());
-                        hi[a] = lo[a] + cells * dx;
-                    }
-                }
+                Box inner = box;
+                snapToLattice(inner, w, "walls." + name, dx, dim);
+                const Vec3 lo = inner.min, hi = inner.max;
+                sampled.min = lo;
+                sampled.max = hi;
+                std::copy(open, open + 6, sampled.open);
                 Vec3 outerLo = lo, outerHi = hi;
                 for (int a = 0; a < dim; ++a) {
                     outerLo[a] -= L;
@@ -152,11 +319,15 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                     if (outside) wallPositions.push_back(p);
                 });
             } else { // solid box: outermost layers inside the surface
-                solids.push_back(box);
-                forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
+                Box solid = box;
+                snapToLattice(solid, w, "walls." + name, dx, dim);
+                solids.push_back(solid);
+                sampled.min = solid.min;
+                sampled.max = solid.max;
+                forEachLatticePoint(solid.min, solid.max, dx, dim, [&](const Vec3& p) {
                     Scalar depth = std::numeric_limits<Scalar>::max();
                     for (int a = 0; a < dim; ++a)
-                        depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
+                        depth = std::min({depth, p[a] - solid.min[a], solid.max[a] - p[a]});
                     if (depth < L) wallPositions.push_back(p);
                 });
             }
@@ -191,8 +362,15 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     if (fluid.keywords().empty())
         throw InputError(geometry.locationOf("fluid"), "'fluid' has no block: nothing to simulate (e.g. "
                                                        "'water { type box; min (..); max (..); }')", "fluid");
+    // a fluid particle nearer a solid wall's face than this is removed: no fluid particle starts
+    // nearer a wall particle than Δx (a box off the fluid's lattice left one half a spacing away)
+    const Scalar solidClearance = Scalar(0.49) * dx;
+    OccupiedSpace occupied(dx, dim);
+    std::vector<char> hydrostaticParticle;
+    Vec3 up = Vec3::Zero();
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
+        checkName(fluid, name, "fluid block");
         f.getWord("type", {"box"});
         const Box box = readBox(f, dim);
         if (!containers.empty()) {
@@ -219,31 +397,47 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         }
         Vec3 velocity = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
         if (dim == 2) velocity[2] = 0;
-        // the top of the block along gravity: the highest of its corners
         const bool hydrostatic = f.getWordOrDefault("initialPressure", {"zero", "hydrostatic"}, "zero") == "hydrostatic";
         const Scalar g = gravity.norm();
         if (hydrostatic && !(g > 0))
             throw InputError(f.locationOf("initialPressure"), "initialPressure hydrostatic needs gravity "
                                                                "(constant/fluidProperties)", "initialPressure");
-        const Vec3 up = g > 0 ? Vec3(-gravity / g) : Vec3::Zero();
-        Scalar top = -std::numeric_limits<Scalar>::max();
-        for (int corner = 0; corner < (1 << dim); ++corner) {
-            Vec3 c = box.min;
-            for (int a = 0; a < dim; ++a)
-                if (corner & (1 << a)) c[a] = box.max[a];
-            top = std::max(top, up.dot(c));
-        }
+        if (g > 0) up = -gravity / g;
         const std::size_t before = out.fluidPositions.size();
+        std::size_t shared = 0;
+        occupied.beginRegion(out.fluidPositions, box.min, box.max);
         forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
             for (const auto& s : solids)
-                if (s.contains(p, dim)) return;
+                if (s.contains(p, dim, solidClearance)) return;
+            if (occupied.filled(p)) {
+                ++shared;
+                return;
+            }
             out.fluidPositions.push_back(p);
             out.fluidVelocities.push_back(velocity);
-            out.fluidDepths.push_back(hydrostatic ? top - up.dot(p) : Scalar(0));
+            hydrostaticParticle.push_back(hydrostatic);
         });
-        if (out.fluidPositions.size() == before)
-            throw InputError(f.where(), "fluid block '" + name + "' produced no particles (is it smaller than particleSpacing, or inside a wall?)");
+        occupied.endRegion(out.fluidPositions);
+        const std::size_t count = out.fluidPositions.size() - before;
+        out.fluidBlocks.push_back({name, fluid.locationOf(name), before, count, box.min, box.max});
+        if (shared > 0) {
+            std::ostringstream s;
+            s << "fluid block '" << name << "' overlaps the blocks before it: " << shared << " of its positions are "
+              << "filled already and are not filled twice (" << count << " particles added)";
+            log::warning(locatedMessage(fluid.locationOf(name), "", s.str()));
+        }
+        if (count == 0 && shared == 0)
+            throw InputError(f.where(), "fluid block '" + name + "' produced no particles (is it smaller than "
+                                        "particleSpacing, or inside a wall?)");
         f.checkAllKeywordsUsed();
+    }
+    // the hydrostatic start: the depth below the fluid's free surface above each particle, over
+    // every block (stacked blocks start as one column)
+    out.fluidDepths.assign(out.fluidPositions.size(), Scalar(0));
+    if (std::find(hydrostaticParticle.begin(), hydrostaticParticle.end(), char(1)) != hydrostaticParticle.end()) {
+        const std::vector<Scalar> depths = depthsBelowFreeSurface(out.fluidPositions, up, dx, dim);
+        for (std::size_t i = 0; i < depths.size(); ++i)
+            if (hydrostaticParticle[i]) out.fluidDepths[i] = depths[i];
     }
     geometry.checkAllKeywordsUsed();
 

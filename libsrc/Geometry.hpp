@@ -10,9 +10,18 @@
 //
 // Fluid particles sit at min + (i + ½)Δx. A container's wall particles continue that lattice
 // outwards: layer k of a face lies (k + ½)Δx outside it, so the effective wall is the face
-// itself. A solid box keeps the `layers` outermost lattice layers inside its surface. Fluid
-// particles inside a solid wall are removed. Each wall entry is a wall system of its own, named
-// after the entry. Room for cylinders, spheres and STL later: each shape is one `type`.
+// itself. A solid box keeps the `layers` outermost lattice layers inside its surface. A wall whose
+// size is not a whole number of Δx along an axis is made so, its max moved to min + round(size/Δx)
+// Δx (a warning names the entry): its particles then fill it to its faces. Fluid particles inside
+// a solid wall, or nearer its face than half a spacing, are removed (so no fluid particle starts
+// nearer a wall particle than Δx). Fluid blocks are filled in file order; a position an earlier
+// block fills is not filled again (OccupiedSpace: overlapping blocks are merged, a warning per
+// block says how many positions it shared). A hydrostatic start takes each particle's depth from
+// the free surface above it, over every fluid block: the top of the fluid in its column, down to
+// the first gap of more than half a spacing. Each wall entry is a wall system of its own, named
+// after the entry; names of walls and blocks are words of letters, digits, '_', '-' and '.'
+// starting with a letter or '_' (a wall's name is a file name, <name>.vtp, and a ParaView block
+// name in the .pvd). Room for cylinders, spheres and STL later: each shape is one `type`.
 #pragma once
 
 #include "Dictionary.hpp"
@@ -26,26 +35,85 @@ namespace spindrift {
 
 struct SampledWall {
     std::string name;
+    SourceLocation where; // the wall's entry in constant/geometry
     std::vector<Vec3> positions;
     const Dictionary* motion = nullptr; // the entry's `motion { }`, read by the caller (Motion::read)
+    // The space it occupies as sampled: a solid box [min, max], or a container's shell, 'thickness'
+    // (its layers) outside [min, max] less the slabs beyond its open faces (xMin xMax yMin ...).
+    bool container = false;
+    Vec3 min = Vec3::Zero(), max = Vec3::Zero();
+    Scalar thickness = 0;
+    bool open[6] = {false, false, false, false, false, false};
+    // Whether p (shifted back by the wall's displacement d) lies in that space, more than
+    // 'margin' inside it.
+    bool occupies(const Vec3& p, int dimension, Scalar margin = 0) const;
+};
+
+// A fluid block as sampled: its particles are [first, first + count) of the fluid's.
+struct SampledBlock {
+    std::string name;
+    SourceLocation where;
+    std::size_t first = 0, count = 0;
+    Vec3 min = Vec3::Zero(), max = Vec3::Zero(); // its box
 };
 
 struct SampledGeometry {
     std::vector<Vec3> fluidPositions;
     std::vector<Vec3> fluidVelocities;
-    // each fluid particle's depth below the top of its block along gravity, where the block starts
-    // hydrostatic (initialPressure hydrostatic), else 0: the start gives it p = ρ0 |g| depth
+    // each fluid particle's depth below the free surface above it along gravity (the top of the
+    // fluid in its column), where its block starts hydrostatic (initialPressure hydrostatic), else
+    // 0: the start gives it p = ρ0 |g| depth
     std::vector<Scalar> fluidDepths;
+    std::vector<SampledBlock> fluidBlocks;
     std::vector<SampledWall> walls;
     Vec3 boundsMin = Vec3::Zero(), boundsMax = Vec3::Zero(); // of everything sampled
     Periodicity periodic;
 };
+
+// The space the particles of earlier regions fill, for sampling regions one after another (the
+// fluid blocks; regions filled from a mesh later): a candidate nearer than (1 − 10⁻³) Δx to a
+// particle of an earlier region is a position already filled, and is not filled again. Only the
+// earlier particles near the new region are indexed (the cells of Δx they lie in, sorted), so
+// regions that do not touch cost a comparison of boxes.
+class OccupiedSpace {
+public:
+    OccupiedSpace(Scalar spacing, int dimension) : dx_(spacing), dim_(dimension) {}
+    // Starts a region within [lo, hi]: the particles placed so far ('placed', every region's
+    // before it) are the earlier ones.
+    void beginRegion(const std::vector<Vec3>& placed, const Vec3& lo, const Vec3& hi);
+    // Ends it: its particles are placed[begin, placed.size()).
+    void endRegion(const std::vector<Vec3>& placed);
+    bool filled(const Vec3& p) const;
+
+private:
+    struct Region {
+        Vec3 lo, hi;
+        std::size_t begin, end;
+    };
+    bool cellOf(const Vec3& p, long c[3]) const;
+    std::uint64_t key(const long c[3]) const;
+    Scalar dx_;
+    int dim_;
+    std::vector<Region> regions_;
+    std::size_t begin_ = 0; // of the current region
+    Vec3 lo_ = Vec3::Zero(), hi_ = Vec3::Zero();
+    long cells_[3] = {0, 0, 0};
+    const std::vector<Vec3>* placed_ = nullptr;
+    std::vector<std::pair<std::uint64_t, std::size_t>> near_; // (cell, particle) sorted: the earlier ones near it
+};
+
+// Depth below the free surface above each of 'positions' along 'up' (a unit vector): from the
+// top of the particles in its column (cells of Δx across 'up') down to it, plus half a spacing;
+// a gap of more than 1.5 Δx between particles of a column starts a new surface below it.
+std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar spacing,
+                                           int dimension);
 
 // How many particles sampleGeometry would make, from the sizes of the blocks and walls alone (no
 // sampling, nothing allocated; an upper bound: solids and open faces are not subtracted). A
 // spacing far too fine for the domain (or `layers 1e9`) is seen before the memory runs out.
 struct ParticleEstimate {
     double count = 0;         // all blocks and walls
+    double fluid = 0;         // of which in fluid blocks
     double largest = 0;       // the largest block or wall's share
     std::string largestName;  // e.g. "walls.tank"
     SourceLocation largestAt; // its entry in constant/geometry

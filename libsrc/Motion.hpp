@@ -31,8 +31,11 @@ public:
     // The box swept by the displacement over [t0, t1] (for the neighbour grid's domain).
     void sweptRange(double t0, double t1, Vec3& lo, Vec3& hi) const;
 
-    // Reads `motion { type ...; }`; errors name the dictionary's file, line and keyword.
-    static std::unique_ptr<Motion> read(const Dictionary& motion, int dimension);
+    // Reads `motion { type ...; }` for a run from runStart to runEnd; errors name the
+    // dictionary's file, line and keyword. Every number must be finite, a period a normal number,
+    // an oscillation at most 1e9 periods from its startTime to runEnd (beyond that its phase is
+    // noise) with a finite peak acceleration, and the motion finite over the run.
+    static std::unique_ptr<Motion> read(const Dictionary& motion, int dimension, double runStart, double runEnd);
 };
 
 } // namespace spindrift

@@ -21,25 +21,35 @@ void UniformGrid::setup(Scalar cellSize, int dimension, const Vec3& domainMin, c
         } else if (periodic.axis[a]) {
             // whole cells of at least the support radius spanning the period exactly
             origin_[a] = periodic.min[a];
-            dims_[a] = int(std::floor(periodic.length[a] / cellSize));
+            const double along = double(std::floor(periodic.length[a] / cellSize));
+            if (!(along <= maxCellsAlong))
+                throw std::length_error(std::string("neighbour search: the periodic length along ") + "xyz"[a] +
+                                        " is too large for the support radius (" + std::to_string(along) + " cells)");
+            dims_[a] = int(along);
             if (dims_[a] < 3)
                 throw std::runtime_error(std::string("the periodic length along ") + "xyz"[a] +
                                          " must be at least 3 kernel support radii");
             invCell_[a] = Scalar(dims_[a]) / periodic.length[a];
         } else {
-            const double extent = std::max(double(domainMax[a] - domainMin[a]), 0.0);
-            dims_[a] = std::max(1, int(std::ceil(extent * invCell_[a])) + 1);
+            const double along = cellsAlong(double(domainMax[a] - domainMin[a]), cellSize);
+            if (!(along <= maxCellsAlong))
+                throw std::length_error(std::string("neighbour search: the domain is too large for the support "
+                                                    "radius along ") + "xyz"[a] + " (" + std::to_string(along) +
+                                        " cells; at most " + std::to_string(long(maxCellsAlong)) + ")");
+            dims_[a] = int(along);
         }
     }
     const double cells = double(dims_[0]) * dims_[1] * dims_[2];
-    if (cells > 2e8)
-        throw std::runtime_error("neighbour search: the domain is too large for the support radius (" +
-                                 std::to_string(cells) + " cells)");
+    if (cells > maxCells)
+        throw std::length_error("neighbour search: the domain is too large for the support radius (" +
+                                std::to_string(cells) + " cells; at most " + std::to_string(long(maxCells)) + ")");
     for (int a = 0; a < 3; ++a) {
         latticeDims_[a] = dims_[a];
         first_[a] = 0;
     }
-    cellStart_.assign(std::size_t(cells) + 1, 0);
+    // no cells until a build covers its points' range (periodic axes always whole)
+    for (int a = 0; a < 3; ++a) dims_[a] = periodic_.axis[a] ? latticeDims_[a] : 1;
+    cellStart_.assign(std::size_t(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
     sorted_.clear();
 }
 

@@ -96,8 +96,18 @@ void permuteRowData(const NeighbourList& list, const std::vector<Index>& order,
 class UniformGrid {
 public:
     // Periodic axes span exactly [periodic.min, periodic.min + length) with at least 3 cells.
+    // The lattice over the domain has at most maxCellsAlong cells along an axis (the reach of the
+    // space-filling curve's 21 bits) and maxCells in all (std::length_error beyond); its cells take
+    // memory only where a build's points are.
     void setup(Scalar cellSize, int dimension, const Vec3& domainMin, const Vec3& domainMax,
                const Periodicity& periodic = {});
+    static constexpr double maxCellsAlong = 2097152; // 2^21
+    static constexpr double maxCells = 2e8;
+    // Cells of the lattice along a (non-periodic) axis spanning 'extent' (in double: a domain of any
+    // size is measured, never overflows an int).
+    static double cellsAlong(double extent, Scalar cellSize) {
+        return std::ceil(std::max(extent, 0.0) * double(Scalar(1) / cellSize)) + 1;
+    }
     void build(const std::vector<Vec3>& points);
     // The built points were renumbered, point k now newIndexOf[k], in an order that keeps the
     // points of each cell in their index order: the grid is then that of a build on them.

@@ -17,6 +17,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <sys/resource.h>
 
 namespace fs = std::filesystem;
 
@@ -171,9 +172,17 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
 Simulation::~Simulation() = default;
 
 namespace {
+// A number read from the start of a file (nullopt when absent or not a number: "max").
+std::optional<double> numberIn(const fs::path& file) {
+    std::ifstream in(file);
+    double value = 0;
+    if (in >> value) return value;
+    return std::nullopt;
+}
+
 // A /proc/meminfo entry in bytes (0 when unknown).
-double meminfoBytes(const std::string& key) {
-    std::ifstream in("/proc/meminfo");
+double meminfoBytes(const fs::path& procRoot, const std::string& key) {
+    std::ifstream in(procRoot / "meminfo");
     for (std::string name; in >> name;) {
         double kib = 0;
         in >> kib;
@@ -190,31 +199,114 @@ std::string gib(double bytes) {
 }
 } // namespace
 
+MemoryLimit availableMemory(const fs::path& procRoot, const fs::path& cgroupRoot, double addressSpaceLimit) {
+    MemoryLimit best;
+    const auto consider = [&](double bytes, const std::string& source) {
+        if (bytes >= 0 && (best.source.empty() || bytes < best.bytes)) best = {bytes, source};
+    };
+    if (const double available = meminfoBytes(procRoot, "MemAvailable"); available > 0)
+        consider(available, gib(available) + " available of " + gib(meminfoBytes(procRoot, "MemTotal")) +
+                                " (/proc/meminfo)");
+    // ulimit -v: the address space left (glibc's arenas and the threads' stacks count in it too)
+    if (std::isfinite(addressSpaceLimit)) {
+        double used = 0;
+        std::ifstream status(procRoot / "self/status");
+        for (std::string line; std::getline(status, line);)
+            if (line.rfind("VmSize:", 0) == 0) used = std::atof(line.c_str() + 7) * 1024;
+        consider(std::max(0.0, addressSpaceLimit - used),
+                 gib(std::max(0.0, addressSpaceLimit - used)) + " of address space left under ulimit -v " +
+                     std::to_string(long(addressSpaceLimit / 1024)) + " (kB)");
+    }
+    // the cgroup's memory limit, and those of the cgroups above it: v2 (memory.max, memory.current)
+    // and v1 (memory/…/memory.limit_in_bytes, memory.usage_in_bytes)
+    std::ifstream groups(procRoot / "self/cgroup");
+    for (std::string line; std::getline(groups, line);) {
+        const auto first = line.find(':'), second = line.find(':', first + 1);
+        if (first == std::string::npos || second == std::string::npos) continue;
+        const std::string controllers = line.substr(first + 1, second - first - 1);
+        const fs::path path = fs::path(line.substr(second + 1)).relative_path();
+        const bool v2 = controllers.empty();
+        if (!v2 && ("," + controllers + ",").find(",memory,") == std::string::npos) continue;
+        const fs::path base = v2 ? cgroupRoot : cgroupRoot / "memory";
+        const char* limitFile = v2 ? "memory.max" : "memory.limit_in_bytes";
+        const char* usageFile = v2 ? "memory.current" : "memory.usage_in_bytes";
+        std::error_code ec;
+        // (in a container the hierarchy's root is often the container's own cgroup)
+        fs::path dir = fs::is_directory(base / path, ec) ? base / path : base;
+        for (;;) {
+            const auto limit = numberIn(dir / limitFile);
+            if (limit && *limit < 0x1p60) { // v1 writes "no limit" as about 2^63
+                const double room = std::max(0.0, *limit - numberIn(dir / usageFile).value_or(0.0));
+                consider(room, gib(room) + " left of the cgroup's " + gib(*limit) + " (" + (dir / limitFile).string() + ")");
+            }
+            if (dir == base || !dir.has_relative_path() || dir.parent_path() == dir) break;
+            dir = dir.parent_path();
+        }
+    }
+    return best;
+}
+
+double latticeNeighbours(Scalar h, Scalar dx, int dim) {
+    const int reach = int(std::ceil(h / dx));
+    double n = 0;
+    for (int k = (dim == 3 ? -reach : 0); k <= (dim == 3 ? reach : 0); ++k)
+        for (int j = -reach; j <= reach; ++j)
+            for (int i = -reach; i <= reach; ++i)
+                n += (i || j || k) && double(dx) * std::sqrt(double(i * i + j * j + k * k)) < double(h);
+    return n;
+}
+
+// Peak resident memory of runs (GNU time's maximum RSS, 2 threads, a few steps; the solver itself
+// and its libraries take 30 MB), per particle, from two runs with the walls fixed and more fluid:
+//   damBreak2D at dx 0.5 mm (26,106 / 240,000 fluid), damBreak3D at dx 1 cm (64,000 / 288,000
+//   fluid, 121,788 wall), with the tutorials' continuity density, density diffusion, artificial
+//   viscosity and adami walls. B a fluid particle (pairs within h = 2.6 dx: 20 in 2D, 80 in 3D):
+//     wcsph 703 (2D), 1484 (3D); pbf 812 (2D); pcisph 1224, 3065; dfsph 1294, 3141; iisph 1317 (2D)
+//   and a wall particle: 83 B (wcsph), 195-209 B (pcisph, dfsph).
+// Fitted as fields (those of the fluid and of its two copies kept for a blow-up's rollback) plus
+// the pairs (neighbour lists and their build's buffers; the iterative solvers' ∇W cache, 3 Scalars a
+// pair), with the Scalar's size scaling what is made of Scalars. PBF's are taken as the iterative
+// solvers' (it keeps no cache: about 60 % over). damBreak3D at dx 1 cm: 139 MB estimated, 133 MB
+// measured with wcsph; 267 MB and 245 MB with pcisph.
+ParticleBytes bytesPerParticle(const PhysicalParameters& physics, bool iterativePressure) {
+    const double S = sizeof(Scalar);
+    const double pairs = latticeNeighbours(physics.supportRadius, physics.particleSpacing, physics.dimension);
+    ParticleBytes b;
+    b.fluid = iterativePressure ? 85 * S + pairs * (8 + 3 * S) : 56 * S + pairs * (9 + S / 2);
+    b.wall = iterativePressure ? 27 * S : 11 * S;
+    return b;
+}
+
+MemoryLimit availableMemory() {
+    rlimit limit{};
+    const double addressSpace = ::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY
+                                    ? double(limit.rlim_cur)
+                                    : std::numeric_limits<double>::infinity();
+    return availableMemory("/proc", "/sys/fs/cgroup", addressSpace);
+}
+
 void Simulation::checkParticleEstimate() const {
     const auto& physics = scene_.physics;
     const ParticleEstimate e = estimateParticleCount(case_.geometry, physics.particleSpacing, physics.dimension);
     const double count = e.count;
-    // bytes per particle: its fields, the sampling's copies and the neighbour lists; measured
-    // (peak memory less that of a small run): 0.6 kB running damBreak2D at 81,000 particles,
-    // 0.45 kB setting up damBreak3D (mostly wall particles). 400 B is below both, so a case that
-    // fits is not refused.
-    const double perParticle = 400;
-    const double bytes = count * perParticle;
+    const ParticleBytes per = bytesPerParticle(physics, pressure_->isIterative());
+    const double bytes = 32.0 * 1024 * 1024 + e.fluid * per.fluid + (count - e.fluid) * per.wall; // + the solver's own
     std::ostringstream estimate;
     estimate << std::setprecision(3) << "about " << count << " particles at particleSpacing " << physics.particleSpacing
              << " in " << physics.dimension << "D (" << e.largest << " in " << e.largestName << ")";
     // the entry that makes the most particles (a huge box, `layers 1e9`), or the spacing itself
     const std::string keyword = e.largestName.substr(e.largestName.find('.') + 1);
     const SourceLocation where = e.largestAt;
-    const double available = meminfoBytes("MemAvailable");
-    if (available > 0 && bytes > available) {
-        const std::string message = "the geometry makes " + estimate.str() + ", needing about " + gib(bytes) +
-                                    "; this machine has " + gib(available) + " available (" +
-                                    gib(meminfoBytes("MemTotal")) + " in all)";
+    const MemoryLimit available = availableMemory();
+    if (available.bytes >= 0 && bytes > available.bytes) {
+        std::ostringstream need;
+        need << std::setprecision(3) << "the geometry makes " << estimate.str() << ", needing about " << gib(bytes)
+             << " (" << per.fluid << " B a fluid particle with these models, " << per.wall << " B a wall particle); "
+             << "there is " << available.source;
         if (!forceLargeCase_)
-            throw InputError(where, message + ": use a larger particleSpacing or a smaller geometry (or -force)",
+            throw InputError(where, need.str() + ": use a larger particleSpacing or a smaller geometry (or -force)",
                              keyword);
-        log::warning(message + "; running anyway (-force)");
+        log::warning(need.str() + "; running anyway (-force)");
     }
     if (count > double(std::numeric_limits<Index>::max()))
         throw InputError(where, "the geometry makes " + estimate.str() + ", more than the " +
@@ -223,9 +315,62 @@ void Simulation::checkParticleEstimate() const {
                          keyword);
 }
 
+namespace {
+// The entry of constant/geometry that stretches the neighbour grid's domain the most along 'axis':
+// the block or wall (a moving one over its sweep) farthest from the fluid's centre.
+struct DomainEntry {
+    std::string what; // "wall 'tank'", "fluid block 'water'"
+    SourceLocation where;
+    std::string keyword;
+    Vec3 lo, hi;
+};
+
+// Refuses a domain whose neighbour grid lattice is beyond the grid's bounds (UniformGrid: cells of
+// h along an axis and in all), naming the entry that stretches it the most along the axis of the
+// most cells: the block or wall (over its motion's sweep) reaching farthest from the fluid's centre.
+void checkDomainSize(const std::vector<DomainEntry>& entries, const Vec3& domainMin, const Vec3& domainMax,
+                     const Periodicity& periodic, Scalar h, int dim, const Vec3& fluidCentre) {
+    double cells[3] = {1, 1, 1}, all = 1;
+    int axis = 0;
+    for (int a = 0; a < dim; ++a) {
+        cells[a] = periodic.axis[a] ? std::floor(double(periodic.length[a]) / h)
+                                    : UniformGrid::cellsAlong(double(domainMax[a] - domainMin[a]), h);
+        if (!(cells[a] <= cells[axis])) axis = a;
+        all *= cells[a];
+    }
+    if (cells[axis] <= UniformGrid::maxCellsAlong && all <= UniformGrid::maxCells) return;
+    const DomainEntry* farthest = nullptr;
+    double reach = -1;
+    for (const DomainEntry& e : entries) {
+        const double r = std::max(std::abs(double(e.lo[axis]) - fluidCentre[axis]), std::abs(double(e.hi[axis]) - fluidCentre[axis]));
+        if (!(r <= reach)) {
+            reach = r;
+            farthest = &e;
+        }
+    }
+    std::ostringstream s;
+    s << std::setprecision(3);
+    const char name = "xyz"[axis];
+    if (farthest) {
+        const double far = std::abs(double(farthest->lo[axis]) - fluidCentre[axis]) >
+                                   std::abs(double(farthest->hi[axis]) - fluidCentre[axis])
+                               ? farthest->lo[axis]
+                               : farthest->hi[axis];
+        s << farthest->what << " reaches " << name << " = " << far << " m: ";
+    }
+    s << "the neighbour grid over the case (" << name << " from " << domainMin[axis] << " to " << domainMax[axis]
+      << " m) would need " << cells[axis] << " cells of the support radius " << h << " m along " << name << " ("
+      << all << " in all); it can number at most " << UniformGrid::maxCellsAlong << " along an axis and "
+      << UniformGrid::maxCells << " in all: is a wall, a block or a motion's sweep far from the rest?";
+    if (!farthest) throw InputError({}, s.str());
+    throw InputError(farthest->where, s.str(), farthest->keyword);
+}
+} // namespace
+
 void Simulation::buildParticles() {
     const auto& physics = scene_.physics;
-    const SampledGeometry g = sampleGeometry(case_.geometry, physics.particleSpacing, physics.dimension, physics.gravity);
+    const int dim = physics.dimension;
+    const SampledGeometry g = sampleGeometry(case_.geometry, physics.particleSpacing, dim, physics.gravity);
     auto& fluid = scene_.fluid;
     fluid.resize(g.fluidPositions.size());
     fluid.setParticleMass(latticeParticleMass(scene_.kernel, physics));
@@ -236,35 +381,74 @@ void Simulation::buildParticles() {
         fluid.id()[i] = Index(i);
     }
     initialDepths_ = g.fluidDepths;
+    std::vector<DomainEntry> entries;
+    for (const SampledBlock& b : g.fluidBlocks) {
+        Vec3 lo = b.min, hi = b.max;
+        if (dim == 2) lo[2] = hi[2] = 0;
+        entries.push_back({"fluid block '" + b.name + "'", b.where, b.name, lo, hi});
+    }
     // Each wall entry is a wall system; the vector is not resized after this (the search keeps
     // pointers to the walls' positions).
     scene_.walls.clear();
     scene_.walls.reserve(g.walls.size());
     Vec3 sweptLo = g.boundsMin, sweptHi = g.boundsMax; // moving walls: where they go during the run
+    const double startTime = time_->startTime(), endTime = time_->endTime();
     for (const SampledWall& sampled : g.walls) {
         WallSystem& w = scene_.walls.emplace_back(sampled.name);
         auto& set = w.particles;
         set.resize(sampled.positions.size());
+        Vec3 wallLo = Vec3::Constant(std::numeric_limits<Scalar>::max()), wallHi = -wallLo;
         for (std::size_t i = 0; i < sampled.positions.size(); ++i) {
             set.position()[i] = sampled.positions[i];
             set.density()[i] = physics.rho0;
             set.id()[i] = Index(i);
+            wallLo = wallLo.cwiseMin(sampled.positions[i]);
+            wallHi = wallHi.cwiseMax(sampled.positions[i]);
         }
-        if (sampled.motion) {
-            w.motion = Motion::read(*sampled.motion, physics.dimension);
-            Vec3 lo, hi;
-            w.motion->sweptRange(time_->startTime(), time_->endTime(), lo, hi);
-            Vec3 wallLo = Vec3::Constant(std::numeric_limits<Scalar>::max()), wallHi = -wallLo;
-            for (const Vec3& p : sampled.positions) {
-                wallLo = wallLo.cwiseMin(p);
-                wallHi = wallHi.cwiseMax(p);
+        if (!sampled.motion) {
+            entries.push_back({"wall '" + sampled.name + "'", sampled.where, sampled.name, wallLo, wallHi});
+            continue;
+        }
+        w.motion = Motion::read(*sampled.motion, dim, startTime, endTime);
+        Vec3 lo, hi;
+        w.motion->sweptRange(startTime, endTime, lo, hi);
+        sweptLo = sweptLo.cwiseMin(wallLo + lo);
+        sweptHi = sweptHi.cwiseMax(wallHi + hi);
+        entries.push_back({"wall '" + sampled.name + "' (over its motion)", sampled.motion->where(), "motion",
+                           wallLo + lo, wallHi + hi});
+        log::info("Wall '" + sampled.name + "' moves: " + w.motion->describe());
+        // The fluid is drawn against the walls where constant/geometry puts them (a motion's
+        // displacement is zero at its startTime). A wall its motion has already moved by the
+        // run's start (the run starting after the motion's startTime) must not start inside
+        // the fluid: what the wall would have pushed is unknown, so the overlap is an error.
+        const Vec3 d0 = w.motion->displacement(startTime);
+        if (d0 != Vec3::Zero()) {
+            std::size_t overlapping = 0, first = g.fluidPositions.size();
+            for (std::size_t i = 0; i < g.fluidPositions.size(); ++i)
+                if (sampled.occupies(g.fluidPositions[i] - d0, dim, Scalar(0.01) * physics.particleSpacing)) {
+                    ++overlapping;
+                    first = std::min(first, i);
+                }
+            std::ostringstream where;
+            where << std::setprecision(6) << "wall '" << sampled.name << "' starts at time " << startTime
+                  << " displaced by (" << d0[0] << " " << d0[1] << " " << d0[2] << ") by its motion";
+            if (overlapping > 0) {
+                std::string block;
+                for (const SampledBlock& b : g.fluidBlocks)
+                    if (first >= b.first && first < b.first + b.count) block = b.name;
+                throw InputError(sampled.motion->where(),
+                                 where.str() + ", where it overlaps " + std::to_string(overlapping) +
+                                     " particles of the fluid (block '" + block +
+                                     "' first): the fluid is drawn against the wall where constant/geometry "
+                                     "places it, its position at the motion's startTime; start the run at the "
+                                     "motion's startTime, or draw the wall and the fluid as they are at time " +
+                                     CaseWriter::timeName(startTime),
+                                 "motion");
             }
-            sweptLo = sweptLo.cwiseMin(wallLo + lo);
-            sweptHi = sweptHi.cwiseMax(wallHi + hi);
-            log::info("Wall '" + sampled.name + "' moves: " + w.motion->describe());
+            log::info(where.str() + " (clear of the fluid)");
         }
     }
-    if (physics.dimension == 2) sweptLo[2] = sweptHi[2] = 0;
+    if (dim == 2) sweptLo[2] = sweptHi[2] = 0;
     // Neighbour grid over the sampled bounds (and the moving walls' sweep) with a generous
     // margin (particles beyond it are clamped into border cells: correct, only slower).
     const Vec3 extent = sweptHi - sweptLo;
@@ -272,14 +456,17 @@ void Simulation::buildParticles() {
     domainMin_ = sweptLo - Vec3::Constant(margin) - Scalar(0.25) * extent;
     domainMax_ = sweptHi + Vec3::Constant(margin) + Scalar(0.25) * extent;
     periodic_ = g.periodic;
-    if (physics.dimension == 2) domainMin_[2] = domainMax_[2] = 0;
+    if (dim == 2) domainMin_[2] = domainMax_[2] = 0;
+    Vec3 fluidCentre = Vec3::Zero();
+    for (const Vec3& x : g.fluidPositions) fluidCentre += x / Scalar(g.fluidPositions.size());
+    checkDomainSize(entries, domainMin_, domainMax_, periodic_, physics.supportRadius, dim, fluidCentre);
     // A particle beyond one more extent (and 10 h) from everything sampled has blown up.
     const Vec3 reach = extent.cwiseMax(Vec3::Constant(10 * physics.supportRadius));
     blowUpMin_ = sweptLo - reach;
     blowUpMax_ = sweptHi + reach;
     // ... or moves 100 times faster than a free fall across the domain could make it
     blowUpSpeedFloor_ = 100 * std::sqrt(2 * physics.gravity.norm() * extent.norm());
-    scene_.search.setup(scene_.constants.supportRadius, physics.dimension, domainMin_, domainMax_, periodic_);
+    scene_.search.setup(scene_.constants.supportRadius, dim, domainMin_, domainMax_, periodic_);
     std::vector<NeighbourSearch::WallSource> sources;
     for (WallSystem& w : scene_.walls) {
         w.particles.permute(scene_.search.sortOrder(w.particles.position())); // cache order
@@ -608,7 +795,32 @@ double Simulation::stableDeltaT() const {
     return dt;
 }
 
+namespace {
+// A moving wall whose positions are not finite or beyond the box [lo, hi] at the scene's time (its
+// motion, checked at set-up, should never put it there): "" when none.
+std::string movingWallBlowUp(const Scene& s, const Vec3& lo, const Vec3& hi) {
+    for (const WallSystem& w : s.walls) {
+        if (!w.moving()) continue;
+        const auto& x = w.particles.position();
+        int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad)
+        for (std::size_t b = 0; b < x.size(); ++b)
+            for (int d = 0; d < s.physics.dimension; ++d) bad |= int(!(x[b][d] >= lo[d] && x[b][d] <= hi[d]));
+        if (!bad) continue;
+        std::ostringstream m;
+        const Vec3 d = w.motion->displacement(s.time);
+        m << std::setprecision(6) << "blow-up at step " << s.step << ", time " << s.time << ": wall '" << w.name()
+          << "' is displaced by (" << d[0] << " " << d[1] << " " << d[2] << ") by its motion ("
+          << w.motion->describe() << "), beyond the domain or not finite";
+        return m.str();
+    }
+    return {};
+}
+} // namespace
+
 std::string Simulation::findBlowUp(bool& densityOnly) const {
+    densityOnly = false;
+    if (std::string wall = movingWallBlowUp(scene_, blowUpMin_, blowUpMax_); !wall.empty()) return wall;
     const auto& f = scene_.fluid;
     const auto& x = f.position();
     const auto& v = f.velocity();

@@ -30,6 +30,29 @@ struct RunSummary {
 // by the kernel's lattice-sum error, ~1 % for the Wendland C2 at h = 2.6Δx in 2D).
 Scalar latticeParticleMass(const KernelTable& kernel, const PhysicalParameters& physics);
 
+// The memory this process may still take, and what limits it: the least of MemAvailable
+// (/proc/meminfo), the address space left under `ulimit -v` (addressSpaceLimit: RLIMIT_AS in
+// bytes, infinity for none; less the process's VmSize) and the room left in its cgroup and every
+// cgroup above it (v2: memory.max less memory.current; v1: memory.limit_in_bytes less
+// memory.usage_in_bytes). bytes < 0 when nothing is known.
+struct MemoryLimit {
+    double bytes = -1;
+    std::string source; // e.g. "1.2 GiB left of the cgroup's 2 GiB (/sys/fs/cgroup/memory.max)"
+};
+MemoryLimit availableMemory(const std::filesystem::path& procRoot, const std::filesystem::path& cgroupRoot,
+                            double addressSpaceLimit);
+MemoryLimit availableMemory(); // this process's: /proc, /sys/fs/cgroup, getrlimit(RLIMIT_AS)
+
+// The neighbours a particle has within the support radius h on the lattice of spacing dx.
+double latticeNeighbours(Scalar h, Scalar dx, int dimension);
+// Bytes a fluid and a wall particle take at the peak of a run, for this spacing, support radius
+// and dimension and an iterative pressure solver or not (see Simulation.cpp for what is counted
+// and the measurements it rests on).
+struct ParticleBytes {
+    double fluid = 0, wall = 0;
+};
+ParticleBytes bytesPerParticle(const PhysicalParameters& physics, bool iterativePressure);
+
 // SIGINT, SIGTERM and SIGHUP before the time loop (set-up, -dryRun): a message naming the
 // signal, and the process ends as killed by it (exit status 128 + signal); there is no state
 // worth writing yet. Simulation::run() takes them over for the time loop (finish the step,

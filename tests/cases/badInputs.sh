@@ -36,5 +36,21 @@ PY
     fi
     echo "ok   $name: $(head -c 160 "$case/stderr")"
 done < "$table"
+# The memory a case may take is what `ulimit -v` leaves too (and a cgroup's memory.max: unit-tested
+# with a made-up /proc and /sys in CaseSetUpTest), not only /proc/meminfo's: about 1.1 GiB of
+# particles is refused under a limit of 800 MB, with the limit named.
+case="$work/ulimit"
+cloneCase "$tutorials/hydrostaticTank2D" "$case"
+sed -i 's/^particleSpacing .*/particleSpacing 0.0002;/' "$case/constant/fluidProperties"
+count=$((count+1))
+if (ulimit -v 800000; "$solver" -case "$case" > "$case/stdout" 2> "$case/stderr"); then
+    echo "FAIL ulimit: exit status 0"; failures=$((failures+1))
+elif ! grep -qE "geometry:14:5: error: the geometry makes about 1.52e\+06 particles .* there is [0-9.]+ GiB of address space left under ulimit -v 800000 \(kB\): use a larger particleSpacing" "$case/stderr"; then
+    echo "FAIL ulimit: message: $(cat "$case/stderr")"; failures=$((failures+1))
+elif [ -d "$case/0" ]; then
+    echo "FAIL ulimit: a time directory was written"; failures=$((failures+1))
+else
+    echo "ok   ulimit: $(head -c 160 "$case/stderr")"
+fi
 echo "$((count - failures)) passed, $failures failed"
 [ "$failures" -eq 0 ] && [ "$count" -ge 25 ]

@@ -40,16 +40,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const SampledGeometry g = sampleGeometry(geometry, physics.particleSpacing, physics.dimension, physics.gravity);
         double sampled = double(g.fluidPositions.size());
         check(g.fluidVelocities.size() == g.fluidPositions.size() && g.fluidDepths.size() == g.fluidPositions.size());
+        for (const Scalar depth : g.fluidDepths) check(depth >= 0 && std::isfinite(depth));
         for (const auto& x : g.fluidPositions) check(x.allFinite());
         for (const auto& v : g.fluidVelocities) check(v.allFinite());
         for (const auto& w : g.walls) {
             sampled += double(w.positions.size());
             for (const auto& x : w.positions) check(x.allFinite());
             if (w.motion) {
-                const auto motion = Motion::read(*w.motion, physics.dimension);
+                // a motion read for a run from 0 to 1 is finite over it (Motion::read checks)
+                const auto motion = Motion::read(*w.motion, physics.dimension, 0.0, 1.0);
                 Vec3 lo, hi;
                 motion->sweptRange(0.0, 1.0, lo, hi);
-                (void)motion->displacement(0.5);
+                check(lo.allFinite() && hi.allFinite() && motion->displacement(0.5).allFinite());
                 (void)motion->describe();
             }
         }
