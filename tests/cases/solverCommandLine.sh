@@ -93,7 +93,7 @@ grep -q "sphSchemes:[0-9]*:[0-9]*" "$work/err" || fail "the message names file:l
 cloneCase "$tutorials/hydrostaticTank2D" "$work/huge"
 sed -i -E "s/^particleSpacing .*/particleSpacing 2e-6;/" "$work/huge/constant/fluidProperties"
 if "$solver" -case "$work/huge" > /dev/null 2> "$work/err"; then fail "a case of 1.5e10 particles ran"; fi
-grep -q "needing about .* GiB; this machine has .* GiB available (.* GiB in all).*(or -force)" "$work/err" \
+grep -q "needing about .* GiB (.* B a fluid particle with these models, .* B a wall particle); there is .* GiB .*(or -force)" "$work/err" \
     || fail "memory estimate: $(cat "$work/err")"
 if "$solver" -case "$work/huge" -force > "$work/log" 2> "$work/err"; then fail "-force ran 1.5e10 particles"; fi
 grep -q "running anyway (-force)" "$work/log" || fail "-force: no warning: $(cat "$work/log")"
