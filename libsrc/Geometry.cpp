@@ -120,7 +120,10 @@ void OccupiedSpace::beginRegion(const std::vector<Vec3>& placed, const Vec3& lo,
     begin_ = placed.size();
     lo_ = lo - Vec3::Constant(2 * dx_);
     hi_ = hi + Vec3::Constant(2 * dx_);
-    for (int a = 0; a < 3; ++a) cells_[a] = a < dim_ ? long(std::ceil((hi_[a] - lo_[a]) / dx_)) + 1 : 1;
+    for (int a = 0; a < 3; ++a) {
+        const double n = std::ceil(double(hi_[a] - lo_[a]) / double(dx_)) + 1; // (a box of any size)
+        cells_[a] = a >= dim_ ? 1 : n < 1e15 ? long(n) : long(1e15);
+    }
     near_.clear();
     for (const Region& r : regions_) {
         bool touches = true;
@@ -167,17 +170,17 @@ bool OccupiedSpace::filled(const Vec3& p) const {
     if (!cellOf(p, c)) return false;
     const Scalar reach2 = Scalar(0.999 * 0.999) * dx_ * dx_;
     long n[3];
-    for (int dz = (dim_ == 3 ? -1 : 0); dz <= (dim_ == 3 ? 1 : 0); ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                n[0] = c[0] + dx;
-                n[1] = c[1] + dy;
-                n[2] = c[2] + dz;
+    for (int k = (dim_ == 3 ? -1 : 0); k <= (dim_ == 3 ? 1 : 0); ++k)
+        for (int j = -1; j <= 1; ++j)
+            for (int i = -1; i <= 1; ++i) {
+                n[0] = c[0] + i;
+                n[1] = c[1] + j;
+                n[2] = c[2] + k;
                 if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= cells_[0] || n[1] >= cells_[1] || n[2] >= cells_[2])
                     continue;
-                const std::uint64_t k = key(n);
-                for (auto it = std::lower_bound(near_.begin(), near_.end(), std::make_pair(k, std::size_t(0)));
-                     it != near_.end() && it->first == k; ++it)
+                const std::uint64_t cell = key(n);
+                for (auto it = std::lower_bound(near_.begin(), near_.end(), std::make_pair(cell, std::size_t(0)));
+                     it != near_.end() && it->first == cell; ++it)
                     if (((*placed_)[it->second] - p).squaredNorm() < reach2) return true;
             }
     return false;

@@ -261,19 +261,20 @@ double latticeNeighbours(Scalar h, Scalar dx, int dim) {
 //   damBreak2D at dx 0.5 mm (26,106 / 240,000 fluid), damBreak3D at dx 1 cm (64,000 / 288,000
 //   fluid, 121,788 wall), with the tutorials' continuity density, density diffusion, artificial
 //   viscosity and adami walls. B a fluid particle (pairs within h = 2.6 dx: 20 in 2D, 80 in 3D):
-//     wcsph 703 (2D), 1484 (3D); pbf 812 (2D); pcisph 1224, 3065; dfsph 1294, 3141; iisph 1317 (2D)
+//     wcsph 703 (2D), 1484 (3D), float 547 (2D); pbf 812 (2D); pcisph 1224, 3065, float 745 (2D);
+//     dfsph 1294, 3141; iisph 1317 (2D)
 //   and a wall particle: 83 B (wcsph), 195-209 B (pcisph, dfsph).
-// Fitted as fields (those of the fluid and of its two copies kept for a blow-up's rollback) plus
-// the pairs (neighbour lists and their build's buffers; the iterative solvers' ∇W cache, 3 Scalars a
-// pair), with the Scalar's size scaling what is made of Scalars. PBF's are taken as the iterative
-// solvers' (it keeps no cache: about 60 % over). damBreak3D at dx 1 cm: 139 MB estimated, 133 MB
-// measured with wcsph; 267 MB and 245 MB with pcisph.
+// Fitted as fields (the fluid's and its two copies kept for a blow-up's rollback: in part
+// Scalars) plus the pairs (neighbour lists and their build's buffers, 13 B a pair; the iterative
+// solvers' ∇W cache adds 3 Scalars a pair), each fit at or above every measurement. PBF's are
+// taken as the iterative solvers' (it keeps no cache: about 60 % over). damBreak3D at dx 1 cm:
+// 140 MB estimated, 133 MB measured with wcsph; 263 MB and 245 MB with pcisph.
 ParticleBytes bytesPerParticle(const PhysicalParameters& physics, bool iterativePressure) {
     const double S = sizeof(Scalar);
     const double pairs = latticeNeighbours(physics.supportRadius, physics.particleSpacing, physics.dimension);
     ParticleBytes b;
-    b.fluid = iterativePressure ? 85 * S + pairs * (8 + 3 * S) : 56 * S + pairs * (9 + S / 2);
-    b.wall = iterativePressure ? 27 * S : 11 * S;
+    b.fluid = iterativePressure ? 80 + 78 * S + pairs * (7 + 3 * S) : 140 + 39 * S + pairs * 13;
+    b.wall = iterativePressure ? 10 + 25 * S : 8 + 10 * S;
     return b;
 }
 
