@@ -593,24 +593,24 @@ public:
     // replaces the earlier entry in place, a dictionary given again is merged into the earlier
     // one, entry by entry (OpenFOAM's #inputMode merge) — `#include "defaults"` then changes.
     void addEntry(Dictionary& d, Entry e) {
-        auto& origins = origins_[&d];
-        const auto [known, added] = origins.try_emplace(e.keyword, origin_);
+        const auto [known, added] = origins_[&d].try_emplace(e.keyword, unknownOrigin);
+        const unsigned previous = std::exchange(known->second, origin_);
         Entry* existing = d.find(std::string_view(e.keyword));
         if (!existing) {
             d.append(std::move(e));
             return;
         }
-        if (!added && known->second == origin_)
+        if (previous == origin_)
             throw InputError(e.where, "duplicate entry '" + e.keyword + "' in " + d.name() + ": already given at " +
                                           locationText(existing->where) + "; remove one of them",
                              e.keyword);
-        known->second = origin_;
         if (existing->isDict() && e.isDict()) {
             for (auto& sub : e.dict->entries_) addEntry(*existing->dict, std::move(sub));
             return;
         }
         log::info("    " + locationText(e.where) + ": '" + e.keyword + "' overrides the entry of " + d.name() +
                   " at " + locationText(existing->where));
+        if (existing->isDict()) origins_.erase(existing->dict.get()); // (freed: its address may come again)
         *existing = std::move(e);
     }
 
@@ -930,7 +930,8 @@ private:
     std::vector<Dictionary*> scopes_;
     // which origin gave each keyword of each dictionary filled (addEntry)
     std::unordered_map<const Dictionary*, std::unordered_map<std::string, unsigned>> origins_;
-    unsigned origins = 0, origin_ = 0; // origins started, the current one
+    static constexpr unsigned unknownOrigin = ~0u; // an entry copied in (a `kw $dict;` copy's)
+    unsigned origins = 0, origin_ = 0; // origins started, the current one (0: Dictionary::set's value)
     int includeDepth_ = 0;
     std::size_t tokenCount_ = 0;       // against maxTokens
     std::size_t substitutedCount_ = 0; // against maxSubstitutedTokens
