@@ -1,6 +1,8 @@
 // Spindrift — time integrator interface (plugins/integrators).
 //
-// step() advances fluid positions and velocities by dt. It calls evaluate(t) whenever it needs
+// step() advances fluid positions and velocities by dt. It starts on the neighbour lists of the
+// current fluid positions, the moving walls placed at scene.time (the core makes them so, also
+// after a restart, a re-sort or a blow-up's roll-back). It calls evaluate(t) whenever it needs
 // accelerations at the current positions and velocities, t being the time of that state (moving
 // walls are placed there): evaluate() rebuilds the neighbour lists and fills fluid.acceleration()
 // (density, boundary, non-pressure, pressure). So multi-stage and multi-step schemes fit one
@@ -35,7 +37,8 @@ public:
 // The integrators that take the accelerations evaluated at the end of one step as the next
 // step's a_n (leapfrog, velocityVerlet, pereaCordero: one evaluation a step). At the first step,
 // and after a restart from step 0, they evaluate first; after a later restart the accelerations
-// come back with the other restart fields.
+// come back with the other restart fields, and the step's lists (which the integrated fields'
+// rates are taken on before the step's evaluation) are the core's to make.
 class CarriedAccelerationIntegrator : public Integrator {
 public:
     void restarted(Scene& s) override { haveAcceleration_ = s.step > 0; }

@@ -326,14 +326,16 @@ void NeighbourSearch::countWallPairs() {
 }
 
 void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
-    builtAhead_ = false;
     buildLists(fluid);
+    builtPoints_ = fluid;
+    built_ = true;
+    builtAhead_ = false;
 }
 
 void NeighbourSearch::buildAhead(const std::vector<Vec3>& predicted) {
     buildLists(predicted);
-    aheadPoints_ = predicted;
-    builtAhead_ = true;
+    builtPoints_ = predicted;
+    built_ = builtAhead_ = true;
 }
 
 void NeighbourSearch::ThreadSpeeds::update(int threads) {
@@ -449,7 +451,7 @@ void NeighbourSearch::permute(const std::vector<Index>& order) {
         w.wallFluidBuild = -1;                     // its rows name fluid particles
     }
     fluidGrid_.relabel(newIndexOf);
-    if (builtAhead_) permuteVector(aheadPoints_, order);
+    if (built_) permuteVector(builtPoints_, order);
     countWallPairs();
     balanceWork();
 }

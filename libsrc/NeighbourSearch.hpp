@@ -321,7 +321,12 @@ public:
     // that the step need not search again.
     void buildAhead(const std::vector<Vec3>& predictedPoints);
     bool builtAt(const std::vector<Vec3>& fluidPoints) const {
-        return builtAhead_ && fluidPoints == aheadPoints_;
+        return builtAhead_ && listsAt(fluidPoints);
+    }
+    // Whether the lists are those of exactly these fluid points: the last build's, or a build
+    // ahead's (relabelled by permute()), with the walls where they were at that build.
+    bool listsAt(const std::vector<Vec3>& fluidPoints) const {
+        return built_ && fluidPoints == builtPoints_;
     }
 
     // Permutation that orders points along the Z-order curve of the grid cells (stable: the
@@ -431,8 +436,8 @@ private:
     };
     std::vector<Wall> walls_;
     std::vector<std::uint32_t> wallPairsBefore_; // Σ_k fluidWall_k.offsets[i]: wall pairs before particle i
-    bool builtAhead_ = false;
-    std::vector<Vec3> aheadPoints_;
+    bool built_ = false, builtAhead_ = false;
+    std::vector<Vec3> builtPoints_; // the fluid points of the last build (or build ahead)
     // kept between steps, no allocation per step: [lists t + l] thread t's rows of list l
     std::vector<std::vector<Index>> threadBuffers_;
     struct GatherChunk {          // particles [first, last) gathered by one thread

@@ -4,7 +4,7 @@ namespace spindrift {
 
 void resortFluid(Scene& s) {
     const std::vector<Index> order = s.search.sortOrder(s.fluid.position());
-    const bool keepSearch = s.search.builtAt(s.fluid.position()) && !s.anyMovingWall();
+    const bool keepSearch = s.search.listsAt(s.fluid.position());
     if (keepSearch && s.gradients.validFor(s.search)) {
         const NeighbourList& ff = s.search.fluidNeighbours(); // still in the old order
         std::vector<Vec3> gradients;

@@ -166,9 +166,10 @@ struct Scene {
 };
 
 // Re-sorts the fluid particles along the search grid's space-filling curve (cache locality), every
-// field with them. A search made ahead at exactly these positions (NeighbourSearch::buildAhead)
-// is kept: its lists are relabelled and the cached pair gradients moved with their rows (models'
-// scratch fields move with the particles); otherwise the lists are stale until the next build.
+// field with them. A search at exactly these positions (the last build, or one made ahead:
+// NeighbourSearch::listsAt) is kept: its lists are relabelled and the cached pair gradients moved
+// with their rows (models' scratch fields move with the particles); otherwise the lists are stale
+// until the next build.
 void resortFluid(Scene& s);
 
 // Sum over i in [0, n) of f(i), independent of the thread count: partial sums over fixed

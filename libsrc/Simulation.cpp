@@ -569,12 +569,19 @@ std::string Simulation::schemesSummary() const {
     return s.str();
 }
 
-void Simulation::evaluate(double time, Scalar dt) {
+void Simulation::updateLists(double time) {
     auto& s = scene_;
     placeMovingWalls(time);
-    // a search a model made ahead at exactly these positions (dfsph's check) is kept, unless a
-    // wall has moved since
-    if (!s.search.builtAt(s.fluid.position()) || s.anyMovingWall()) s.search.build(s.fluid.position());
+    // lists at exactly these positions (the last build, a re-sort of it, or a search a model made
+    // ahead: dfsph's check) are kept, unless a wall has moved since they were made
+    const bool wallsThere = !s.anyMovingWall() || listsWallTime_ == time;
+    if (!wallsThere || !s.search.listsAt(s.fluid.position())) s.search.build(s.fluid.position());
+    listsWallTime_ = time;
+}
+
+void Simulation::evaluate(double time, Scalar dt) {
+    auto& s = scene_;
+    updateLists(time);
     pressure_->computeDensity(s);
     if (boundaryModel_) boundaryModel_->update(s);
     auto& a = s.fluid.acceleration();
@@ -841,6 +848,10 @@ RunSummary Simulation::run() {
         last.holdSteps = deltaTHoldSteps_;
         last.valid = true;
 
+        // the step starts on the lists of its state: an integrator that carries a_n over from the
+        // last step advances the integrated fields (continuity density) on them before it evaluates;
+        // after a restart, a re-sort or a blow-up's roll-back they are made here
+        updateLists(s.time);
         integrator_->step(s, Scalar(dt), [&](double t) { evaluate(t, Scalar(dt)); });
         s.time = last.time + dt;
         ++s.step;

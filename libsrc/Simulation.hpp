@@ -73,6 +73,9 @@ private:
     // Moves the moving walls to where their motion puts them at 'time' (positions, velocities,
     // accelerations).
     void placeMovingWalls(double time);
+    // Places the moving walls at 'time' and makes the neighbour lists those of the current fluid
+    // positions with the walls there (kept when they are already).
+    void updateLists(double time);
     bool restartFromLatest();
     void write();
     std::string timeFile() const;
@@ -122,6 +125,7 @@ private:
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
     Periodicity periodic_;
+    double listsWallTime_ = std::numeric_limits<double>::quiet_NaN(); // where the walls were when the lists were made
     bool staticWallsWritten_ = false;
     bool restarted_ = false;
     bool forceLargeCase_ = false;
