@@ -714,6 +714,7 @@ extern "C" void onStopSignalDuringSetUp(int signal) {
     for (const char* part : {log::signalName(signal), " received during set-up (before the time loop): stopped\n"})
         for (; *part && n + 1 < sizeof text; ++part) text[n++] = *part;
     log::writeLastWords(text, n);
+    CaseLock::releaseInSignalHandler(); // a run that never started leaves no lock behind
     ::signal(signal, SIG_DFL); // die of the signal: the status a shell shows is 128 + signal
     ::raise(signal);
 }

@@ -69,6 +69,7 @@ for sig in INT TERM HUP; do
     grep -qx "spindrift: SIG$sig received during set-up (before the time loop): stopped" "$work/setUp$sig/log" \
         || fail "SIG$sig during set-up: no message: $(tail -n 3 "$work/setUp$sig/log")"
     if ls "$work/setUp$sig" | grep -q '^[0-9]'; then fail "SIG$sig during set-up: a time was written"; fi
+    if ls -a "$work/setUp$sig" | grep -q '^\.spindrift\.lock'; then fail "SIG$sig during set-up: the case lock is left"; fi
     echo "ok SIG$sig during set-up: exit status $status, '$(tail -n 1 "$work/setUp$sig/log")'"
 done
 
