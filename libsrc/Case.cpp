@@ -179,7 +179,7 @@ void copyCaseInput(const fs::path& source, const fs::path& target) {
         const std::string name = entry.path().filename().string();
         if (name.empty() || name[0] == '.') continue;
         if (entry.is_directory()) {
-            if (isTimeName(name) || name == "postProcessing" || name == "run") continue;
+            if (isTimeName(name) || name == "postProcessing" || name == "previousRun" || name == "run") continue;
         } else {
             const std::string ext = entry.path().extension().string();
             if (name.rfind("log.", 0) == 0 || ext == ".pvd" || ext == ".png" || ext == ".tmp") continue;

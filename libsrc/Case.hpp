@@ -27,9 +27,9 @@ struct Case {
 PhysicalParameters readPhysicalParameters(const Dictionary& fluidProperties);
 
 // Copies a case's input to 'target' (created; it must not exist or be empty): everything but
-// what a run leaves behind (time directories, .<time>.tmp, postProcessing/, log.*, *.pvd,
-// plots, hidden files), as OpenFOAM's cloneCase. Tests, the bench utilities and ./Allrun copy
-// tutorials with it, so they never read another run's results.
+// what a run leaves behind (time directories, .<time>.tmp, postProcessing/, previousRun/, log.*,
+// *.pvd, plots, hidden files), as OpenFOAM's cloneCase. Tests, the bench utilities and ./Allrun
+// copy tutorials with it, so they never read another run's results.
 void copyCaseInput(const std::filesystem::path& source, const std::filesystem::path& target);
 // The case's lock: <case>/.spindrift.lock holding "pid host", so that two solvers never write
 // into one case (the second would overwrite or delete the first's time directories). Taken

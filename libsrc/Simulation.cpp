@@ -156,7 +156,7 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     }
 
     checkWriteFields();
-    writer_ = std::make_unique<CaseWriter>(case_.dir, time_->timePrecision());
+    writer_ = std::make_unique<CaseWriter>(case_.dir, time_->timePrecision(), std::min(0.0, time_->startTime()));
     restarted_ = time_->startFromLatest() && restartFromLatest();
     if (!restarted_) scene_.time = time_->startTime();
     time_->begin(scene_.time, lastDeltaT_);
@@ -531,6 +531,7 @@ bool Simulation::restartFromLatest() {
                          "no time directory to restart from (" + firstProblem +
                              "); use 'startFrom startTime;' or repair the time",
                          "startFrom");
+    restartedFrom_ = name;
     auto& fluid = scene_.fluid;
     fluid.resize(saved->size());
     fluid.id() = saved->id();
@@ -547,7 +548,6 @@ bool Simulation::restartFromLatest() {
     deltaTCap_ = timeDict->getOrDefault<double>("blowUpDeltaTCap", std::numeric_limits<double>::infinity());
     deltaTHoldSteps_ = timeDict->getOrDefault<int>("blowUpHoldSteps", 0);
     if (!(deltaTCap_ > 0)) deltaTCap_ = std::numeric_limits<double>::infinity();
-    staticWallsWritten_ = true; // fixed walls were written at the first time
     log::info("Restarting from time " + name + " (step " + std::to_string(scene_.step) + ", " +
               std::to_string(saved->size()) + " particles)");
     return true;
@@ -681,24 +681,42 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
 }
 
 void Simulation::write() {
-    // fixed walls once (later times refer to them), moving walls at every written time; a wall
-    // whose boundary model mirrors the fluid's pressure has no pressure nor density of its own
-    // (the arrays hold nothing meaningful): they are left out rather than written as 0
+    // every system at every written time: a wall's own pressure and density change (adami), and
+    // each time directory is whole by itself (a fixed wall's positions are written again: VTK
+    // XML PolyData cannot take another file's points). A wall whose boundary model mirrors the
+    // fluid's pressure has no pressure nor density of its own (the arrays hold nothing
+    // meaningful): they are left out rather than written as 0
     std::vector<const ParticleSet*> walls;
     for (auto& w : scene_.walls) {
         if (w.pressureMirrored) {
             w.particles.setUndefined("pressure");
             w.particles.setUndefined("density");
         }
-        if (w.moving() || !staticWallsWritten_) walls.push_back(&w.particles);
+        walls.push_back(&w.particles);
     }
-    staticWallsWritten_ = true;
     writer_->write(scene_.time, scene_.fluid, walls, writeFields_, {{"uniform/time", timeFile()}});
-    ++writes_;
+}
+
+void Simulation::takeCaseTimes() {
+    const CaseWriter::RunStart start = writer_->beginRun(scene_.time, restartedFrom_);
+    const auto names = [](const std::vector<std::string>& list) {
+        std::string text;
+        for (const auto& n : list) text += " " + n;
+        return text;
+    };
+    if (!start.movedAside.empty())
+        log::warning((restarted_ ? "the times after the restart time " + restartedFrom_ + " are not continued"
+                                 : "a run from startTime owns the case's times") +
+                     ": moved those of an earlier run to " + (case_.dir / "previousRun").string() + ":" +
+                     names(start.movedAside) +
+                     (start.replacedPreviousRun ? " (removing the previousRun/ of an earlier start)" : ""));
+    if (!start.notListed.empty())
+        log::info("The times before startTime" + names(start.notListed) +
+                  " are an earlier run's: kept, but not listed in " + writer_->collectionFile().filename().string());
 }
 
 void Simulation::writeInitialState() {
-    writer_->rebuildCollection();
+    takeCaseTimes();
     evaluate(scene_.time, Scalar(time_->initialDeltaT()));
     write();
 }
@@ -800,7 +818,7 @@ RunSummary Simulation::run() {
         log::setFatalSignalContext(text);
     };
 
-    writer_->rebuildCollection();
+    takeCaseTimes();
     if (!restarted_) {
         evaluate(s.time, Scalar(time_->initialDeltaT()));
         writeAndLog();
@@ -977,7 +995,7 @@ RunSummary Simulation::run() {
     for (auto& f : functions_) f->end(s);
     summary.steps = s.step - startStep;
     summary.endTime = s.time;
-    summary.writes = writes_;
+    summary.writes = int(writer_->timesWritten());
     summary.wallSeconds = wallSeconds();
     summary.averageIterations = iterativeSteps ? double(iterations) / iterativeSteps : 0.0;
     return summary;

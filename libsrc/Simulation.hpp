@@ -77,6 +77,8 @@ private:
     // positions with the walls there (kept when they are already).
     void updateLists(double time);
     bool restartFromLatest();
+    // The case's times for this run (CaseWriter::beginRun), logged.
+    void takeCaseTimes();
     void write();
     std::string timeFile() const;
     // Describes the worst problem of the current state (empty when healthy); 'densityOnly'
@@ -126,10 +128,9 @@ private:
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
     Periodicity periodic_;
     double listsWallTime_ = std::numeric_limits<double>::quiet_NaN(); // where the walls were when the lists were made
-    bool staticWallsWritten_ = false;
     bool restarted_ = false;
+    std::string restartedFrom_; // the time's name (restarted_)
     bool forceLargeCase_ = false;
-    int writes_ = 0;
 };
 
 } // namespace spindrift
