@@ -459,6 +459,115 @@ std::string Simulation::timeFile() const {
     return s.str();
 }
 
+std::string Simulation::particlesFile() const {
+    const auto& physics = scene_.physics;
+    std::ostringstream s;
+    s << std::setprecision(17) << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+      << "    class       dictionary;\n    object      particles;\n}\n\n"
+      << "// what 'startFrom latestTime' from this time must match (the particles continue)\n"
+      << "dimension       " << physics.dimension << ";\n"
+      << "particleSpacing " << double(physics.particleSpacing) << ";\n"
+      << "supportRadius   " << double(physics.supportRadius / physics.particleSpacing) << ";\n"
+      << "rho0            " << double(physics.rho0) << ";\n"
+      << "kernel          " << case_.sphSchemes.subDict("kernel").get<std::string>("type") << ";\n"
+      << "particleMass    " << double(scene_.fluid.particleMass()) << ";\n"
+      << "fluid           (" << scene_.fluid.name() << ");\n"
+      << "walls           (";
+    for (std::size_t k = 0; k < scene_.walls.size(); ++k) s << (k ? " " : "") << scene_.walls[k].name();
+    s << ");\n";
+    return s.str();
+}
+
+namespace {
+// The two values of a setting a restart refuses, in words that tell them apart.
+std::string twoValues(double now, double then) {
+    for (int digits = 6;; ++digits) {
+        std::ostringstream a, b;
+        a << std::setprecision(digits) << now;
+        b << std::setprecision(digits) << then;
+        if (a.str() != b.str() || digits == 17) return a.str() + " is not the " + b.str();
+    }
+}
+
+bool sameValue(double a, double b, double tolerance) {
+    return std::abs(a - b) <= tolerance * std::max(std::abs(a), std::abs(b));
+}
+} // namespace
+
+void Simulation::checkRestartMatches(const fs::path& dir, const ParticleSet& saved) const {
+    // (relative tolerance: a restart by a build of the other precision reads the same values)
+    constexpr double tolerance = 1e-6;
+    const std::string time = dir.filename().string();
+    const auto& physics = scene_.physics;
+    const Dictionary& fp = case_.fluidProperties;
+    const fs::path file = dir / "uniform/particles";
+    const std::string anew = ", or 'startFrom startTime;' to start anew";
+    // "<what> of time T (<file>): a restart continues its particles; use <fix>, or ..."
+    const auto refuse = [&](const SourceLocation& where, const std::string& keyword, const std::string& what,
+                            const std::string& fix, const fs::path& source) {
+        throw InputError(where, what + " of time " + time + " (" + source.string() +
+                                    "): a restart continues its particles; use " + fix + anew, keyword);
+    };
+    const Scalar mass = scene_.fluid.particleMass();
+    if (!fs::exists(file)) {
+        // a time written before uniform/particles was: the mass its fluid.vtp holds (it changes
+        // with the spacing, the dimension, rho0, the kernel and its support)
+        if (!sameValue(saved.particleMass(), mass, tolerance))
+            refuse(fp.where(), "", "the particle mass " + twoValues(mass, saved.particleMass()),
+                   "the particleSpacing, dimension, rho0 and kernel it was run with", dir / "fluid.vtp");
+        return;
+    }
+    const Dictionary then = Dictionary::fromFile(file);
+    const auto at = [](const Dictionary& d, const std::string& keyword) {
+        return d.found(keyword) ? d.locationOf(keyword) : d.where();
+    };
+    const auto text = [](double x) { // the shortest that reads back as x
+        for (int digits = 6;; ++digits) {
+            std::ostringstream s;
+            s << std::setprecision(digits) << x;
+            if (digits == 17 || std::strtod(s.str().c_str(), nullptr) == x) return s.str();
+        }
+    };
+    if (const int was = then.get<int>("dimension"); was != physics.dimension)
+        refuse(at(fp, "dimension"), "dimension",
+               "dimension " + std::to_string(physics.dimension) + " is not the " + std::to_string(was),
+               "dimension " + std::to_string(was), file);
+    const auto check = [&](const std::string& keyword, double now) {
+        const double was = then.get<double>(keyword);
+        if (!sameValue(now, was, tolerance))
+            refuse(at(fp, keyword), keyword, keyword + " " + twoValues(now, was), keyword + " " + text(was), file);
+    };
+    check("particleSpacing", physics.particleSpacing);
+    check("supportRadius", physics.supportRadius / physics.particleSpacing);
+    check("rho0", physics.rho0);
+    const Dictionary& kernel = case_.sphSchemes.subDict("kernel");
+    const std::string kernelNow = kernel.get<std::string>("type"), kernelThen = then.get<std::string>("kernel");
+    if (kernelNow != kernelThen)
+        refuse(at(kernel, "type"), "type",
+               "kernel " + kernelNow + " is not the " + kernelThen,
+               "kernel { type " + kernelThen + "; } (the particle mass is the kernel's lattice sum)", file);
+    const double massThen = then.get<double>("particleMass");
+    if (!sameValue(mass, massThen, tolerance))
+        refuse(fp.where(), "", "the particle mass " + twoValues(mass, massThen),
+               "the fluidProperties and kernel it was run with", file);
+    const auto fluids = then.get<std::vector<std::string>>("fluid");
+    if (fluids != std::vector<std::string>{scene_.fluid.name()}) {
+        std::string list;
+        for (const auto& f : fluids) list += (list.empty() ? "" : " ") + f;
+        refuse(case_.geometry.where(), "", "the fluid systems (" + scene_.fluid.name() + ") are not the (" + list + ")",
+               "the fluids it was run with", file);
+    }
+    // walls are sampled anew from constant/geometry: a change is the user's (a gate taken out)
+    std::vector<std::string> wallsNow, wallsThen = then.get<std::vector<std::string>>("walls");
+    for (const auto& w : scene_.walls) wallsNow.push_back(w.name());
+    for (const auto& w : wallsThen)
+        if (std::find(wallsNow.begin(), wallsNow.end(), w) == wallsNow.end())
+            log::info("Wall '" + w + "' of time " + time + " is not in constant/geometry: the restart runs without it");
+    for (const auto& w : wallsNow)
+        if (std::find(wallsThen.begin(), wallsThen.end(), w) == wallsThen.end())
+            log::info("Wall '" + w + "' is new since time " + time + " (it is not in " + file.string() + ")");
+}
+
 namespace {
 // Why a saved time cannot be restarted from (empty: it can): its fluid.vtp unreadable, empty or
 // holding a value that is not finite (a blow-up saved as if it were a state), its uniform/time
@@ -531,6 +640,7 @@ bool Simulation::restartFromLatest() {
                          "no time directory to restart from (" + firstProblem +
                              "); use 'startFrom startTime;' or repair the time",
                          "startFrom");
+    checkRestartMatches(case_.dir / name, *saved);
     restartedFrom_ = name;
     auto& fluid = scene_.fluid;
     fluid.resize(saved->size());
@@ -694,7 +804,8 @@ void Simulation::write() {
         }
         walls.push_back(&w.particles);
     }
-    writer_->write(scene_.time, scene_.fluid, walls, writeFields_, {{"uniform/time", timeFile()}});
+    writer_->write(scene_.time, scene_.fluid, walls, writeFields_,
+                   {{"uniform/time", timeFile()}, {"uniform/particles", particlesFile()}});
 }
 
 void Simulation::takeCaseTimes() {

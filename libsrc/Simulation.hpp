@@ -77,9 +77,16 @@ private:
     // positions with the walls there (kept when they are already).
     void updateLists(double time);
     bool restartFromLatest();
+    // Refuses a restart from time 'name' (in 'dir') of other particles than this set-up makes:
+    // another dimension, particleSpacing, supportRadius, rho0, kernel, particle mass or fluid
+    // systems than uniform/particles holds (an InputError naming the keyword and both values);
+    // logs the walls added or removed since.
+    void checkRestartMatches(const std::filesystem::path& dir, const ParticleSet& saved) const;
     // The case's times for this run (CaseWriter::beginRun), logged.
     void takeCaseTimes();
     void write();
+    // uniform/particles of a written time: what a restart from it must match.
+    std::string particlesFile() const;
     std::string timeFile() const;
     // Describes the worst problem of the current state (empty when healthy); 'densityOnly'
     // tells that it is a density error (measured at the state before the last step).
