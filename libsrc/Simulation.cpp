@@ -1011,6 +1011,7 @@ RunSummary Simulation::run() {
             };
             deltaTCap_ = good.deltaTCap;
             deltaTHoldSteps_ = good.holdSteps;
+            time_->scheduleNextWrite(good.time); // the steps taken again write the times they pass
             if (reduceDeltaTOnBlowUp_ && retries < blowUpRetries_) {
                 removeAbandonedTimes();
                 ++retries;
