@@ -816,10 +816,9 @@ void Simulation::takeCaseTimes() {
         return text;
     };
     if (!start.movedAside.empty())
-        log::warning((restarted_ ? "the times after the restart time " + restartedFrom_ + " are not continued"
-                                 : "a run from startTime owns the case's times") +
-                     ": moved those of an earlier run to " + (case_.dir / "previousRun").string() + ":" +
-                     names(start.movedAside) +
+        log::warning((restarted_ ? "the times after the restart time " + restartedFrom_ + " are not continued: moved them"
+                                 : "a run from startTime owns the case's times: moved those of an earlier run") +
+                     " to " + (case_.dir / "previousRun").string() + ":" + names(start.movedAside) +
                      (start.replacedPreviousRun ? " (removing the previousRun/ of an earlier start)" : ""));
     if (!start.notListed.empty())
         log::info("The times before startTime" + names(start.notListed) +
