@@ -459,18 +459,30 @@ std::string Simulation::timeFile() const {
     return s.str();
 }
 
+namespace {
+// The shortest text that reads back as x in the build's precision (0.01, not 0.0099999997764825821
+// for a float).
+std::string shortest(Scalar x) {
+    for (int digits = 6;; ++digits) {
+        std::ostringstream s;
+        s << std::setprecision(digits) << double(x);
+        if (digits >= 17 || Scalar(std::strtod(s.str().c_str(), nullptr)) == x) return s.str();
+    }
+}
+} // namespace
+
 std::string Simulation::particlesFile() const {
     const auto& physics = scene_.physics;
     std::ostringstream s;
-    s << std::setprecision(17) << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+    s << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
       << "    class       dictionary;\n    object      particles;\n}\n\n"
       << "// what 'startFrom latestTime' from this time must match (the particles continue)\n"
       << "dimension       " << physics.dimension << ";\n"
-      << "particleSpacing " << double(physics.particleSpacing) << ";\n"
-      << "supportRadius   " << double(physics.supportRadius / physics.particleSpacing) << ";\n"
-      << "rho0            " << double(physics.rho0) << ";\n"
+      << "particleSpacing " << shortest(physics.particleSpacing) << ";\n"
+      << "supportRadius   " << shortest(physics.supportRadius / physics.particleSpacing) << ";\n"
+      << "rho0            " << shortest(physics.rho0) << ";\n"
       << "kernel          " << case_.sphSchemes.subDict("kernel").get<std::string>("type") << ";\n"
-      << "particleMass    " << double(scene_.fluid.particleMass()) << ";\n"
+      << "particleMass    " << shortest(scene_.fluid.particleMass()) << ";\n"
       << "fluid           (" << scene_.fluid.name() << ");\n"
       << "walls           (";
     for (std::size_t k = 0; k < scene_.walls.size(); ++k) s << (k ? " " : "") << scene_.walls[k].name();
@@ -521,13 +533,6 @@ void Simulation::checkRestartMatches(const fs::path& dir, const ParticleSet& sav
     const auto at = [](const Dictionary& d, const std::string& keyword) {
         return d.found(keyword) ? d.locationOf(keyword) : d.where();
     };
-    const auto text = [](double x) { // the shortest that reads back as x
-        for (int digits = 6;; ++digits) {
-            std::ostringstream s;
-            s << std::setprecision(digits) << x;
-            if (digits == 17 || std::strtod(s.str().c_str(), nullptr) == x) return s.str();
-        }
-    };
     if (const int was = then.get<int>("dimension"); was != physics.dimension)
         refuse(at(fp, "dimension"), "dimension",
                "dimension " + std::to_string(physics.dimension) + " is not the " + std::to_string(was),
@@ -535,7 +540,8 @@ void Simulation::checkRestartMatches(const fs::path& dir, const ParticleSet& sav
     const auto check = [&](const std::string& keyword, double now) {
         const double was = then.get<double>(keyword);
         if (!sameValue(now, was, tolerance))
-            refuse(at(fp, keyword), keyword, keyword + " " + twoValues(now, was), keyword + " " + text(was), file);
+            refuse(at(fp, keyword), keyword, keyword + " " + twoValues(now, was), keyword + " " + shortest(Scalar(was)),
+                   file);
     };
     check("particleSpacing", physics.particleSpacing);
     check("supportRadius", physics.supportRadius / physics.particleSpacing);
