@@ -58,7 +58,7 @@ PhysicalParameters readPhysicalParameters(const Dictionary& d) {
           << (factor > 6 ? "many" : "few") << " neighbours; use a value between 1.5 and 6 (typically 2-3)";
         throw InputError(d.locationOf("supportRadius"), s.str(), "supportRadius");
     }
-    p.supportRadius = Scalar(factor) * p.particleSpacing;
+    p.supportRadiusFactor = Scalar(factor);
     d.checkAllKeywordsUsed();
     return p;
 }

@@ -1,7 +1,7 @@
 // Spindrift — case output: VTK XML PolyData per set and time, .pvd collection at the root.
 //
 // File layout (see CaseWriter.hpp):
-//   <case>/<time>/fluid.vtp, <case>/<time>/<wall>.vtp (each wall system written that time),
+//   <case>/<time>/fluid.vtp, <case>/<time>/<system>.vtp (each other system written that time),
 //   <case>/<caseName>.pvd listing every complete time with relative paths, a part per system.
 // Arrays in a .vtp: points = positions; point data "id" (vtkTypeUInt32Array, i.e. VTK's
 // "UInt32", the type of Index), then the selected scalar (1 component) and vector
@@ -383,8 +383,8 @@ std::vector<std::pair<double, std::string>> CaseWriter::existingTimes() const {
 }
 
 namespace {
-// The wall systems a time directory holds: its .vtp files but fluid.vtp, sorted.
-std::vector<std::string> wallFilesIn(const fs::path& dir) {
+// The systems but the fluid a time directory holds: its .vtp files but fluid.vtp, sorted.
+std::vector<std::string> otherFilesIn(const fs::path& dir) {
     std::vector<std::string> walls;
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
@@ -444,7 +444,7 @@ CaseWriter::RunStart CaseWriter::beginRun(double from, const std::string& contin
     for (const auto& [value, name] : existingTimes()) {
         const bool moved = std::any_of(later.begin(), later.end(), [&](const auto& l) { return l.second == name; });
         if (moved) continue;
-        if (continuing) times_.push_back({value, name, wallFilesIn(caseDir_ / name)});
+        if (continuing) times_.push_back({value, name, otherFilesIn(caseDir_ / name)});
         else start.notListed.push_back(name);
     }
     written_.clear();
@@ -471,7 +471,7 @@ CaseWriter::RunStart CaseWriter::beginRun(double from, const std::string& contin
     return start;
 }
 
-void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<const ParticleSet*>& walls,
+void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<SystemFile>& others,
                        const std::vector<std::string>& fieldNames,
                        const std::vector<std::pair<std::string, std::string>>& extraFiles) {
     const std::string name = timeName(time, precision_);
@@ -510,11 +510,11 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
     bool replacing = false;
     try {
         writeVtp(tmpDir / "fluid.vtp", fluid, fieldNames, true);
-        for (const ParticleSet* w : walls) {
-            writeVtp(tmpDir / (w->name() + ".vtp"), *w, fieldNames, false, true);
-            entry.walls.push_back(w->name());
+        for (const SystemFile& o : others) {
+            writeVtp(tmpDir / (o.set->name() + ".vtp"), *o.set, fieldNames, o.restart, !o.restart);
+            entry.others.push_back(o.set->name());
         }
-        std::sort(entry.walls.begin(), entry.walls.end());
+        std::sort(entry.others.begin(), entry.others.end());
         for (const auto& [relative, content] : extraFiles) {
             const fs::path file = tmpDir / relative;
             fs::create_directories(file.parent_path());
@@ -593,17 +593,17 @@ std::string CaseWriter::collectionText(const std::vector<TimeEntry>& times) cons
     s << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
-    // every wall system of the times listed gets a part of its own, in name order (the same
-    // part number at every time); each time shows the walls its directory holds
+    // every other system of the times listed gets a part of its own, in name order (the same
+    // part number at every time); each time shows the systems its directory holds
     std::map<std::string, int> part;
     for (const auto& e : times)
-        for (const auto& w : e.walls) part.emplace(w, 0);
+        for (const auto& w : e.others) part.emplace(w, 0);
     int next = 1;
     for (auto& [wall, number] : part) number = next++;
     for (const auto& e : times) {
         s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"0\" file=\""
           << e.name << "/fluid.vtp\" name=\"fluid\"/>\n";
-        for (const auto& w : e.walls)
+        for (const auto& w : e.others)
             s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"" << part[w] << "\" file=\""
               << e.name << "/" << w << ".vtp\" name=\"" << w << "\"/>\n";
     }

@@ -1,6 +1,6 @@
 // Spindrift — output of a case: one directory per written time holding a .vtp file per
-// particle system (fluid.vtp and <wall>.vtp for every wall system: each time directory is whole
-// by itself), plus <caseName>.pvd at the case root listing the times of this run, one block
+// particle system (fluid.vtp and <system>.vtp for every wall, body and passive system: each time
+// directory is whole by itself), plus <caseName>.pvd at the case root listing the times of this run, one block
 // (part) per system.
 //
 // Files are VTK XML PolyData, binary appended, written with the VTK library; points are the
@@ -65,15 +65,24 @@ public:
     // cannot be moved (the run would mix it in).
     RunStart beginRun(double from, const std::string& continued = "");
 
-    // Writes <caseDir>/<timeName(time)>/fluid.vtp and <name>.vtp for each of 'walls' (named by
-    // their sets; every wall system of the run, so that each time directory is whole), then
+    // A system written besides the fluid: restart, its restart fields are always written (a
+    // passive system's particles continue on a restart), raw; else only those selected,
+    // compressed (walls and bodies are sampled anew on a restart).
+    struct SystemFile {
+        SystemFile(const ParticleSet* system, bool withRestartFields = false) // NOLINT: a wall converts
+            : set(system), restart(withRestartFields) {}
+        const ParticleSet* set;
+        bool restart;
+    };
+    // Writes <caseDir>/<timeName(time)>/fluid.vtp and <name>.vtp for each of 'others' (named by
+    // their sets; every other system of the run, so that each time directory is whole), then
     // the .pvd. 'fieldNames': arrays to write besides 'id' (empty = every field flagged
-    // output); the fluid's fields flagged restart are always written, the walls' only when
-    // selected (walls are sampled anew on a restart); scratch and undefined fields never.
+    // output); the fluid's fields flagged restart are always written, the others' as
+    // SystemFile says; scratch and undefined fields never.
     // 'extraFiles': further files written into the time directory before it is renamed
     // (relative path, content), e.g. uniform/time with the exact time and step for restarts.
     // Whatever had the time's name before (an earlier write of it, a dangling link) is replaced.
-    void write(double time, const ParticleSet& fluid, const std::vector<const ParticleSet*>& walls,
+    void write(double time, const ParticleSet& fluid, const std::vector<SystemFile>& others,
                const std::vector<std::string>& fieldNames = {},
                const std::vector<std::pair<std::string, std::string>>& extraFiles = {});
 
@@ -97,7 +106,7 @@ private:
     struct TimeEntry {
         double value;                   // the time name's numeric value
         std::string name;               // directory name
-        std::vector<std::string> walls; // the wall systems it holds (<name>.vtp), sorted
+        std::vector<std::string> others; // the systems but the fluid it holds (<name>.vtp), sorted
     };
     std::string collectionText(const std::vector<TimeEntry>& times) const;
     void writeCollection() const; // writes the .pvd from times_

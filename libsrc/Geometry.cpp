@@ -44,6 +44,16 @@ template <class F> void forEachLatticePoint(const Vec3& lo, const Vec3& hi, Scal
             }
 }
 
+// The lattice points of a solid box that lie within 'thickness' of its surface (its outermost
+// layers), appended to 'out'.
+void solidBoxLayers(const Box& box, Scalar thickness, Scalar dx, int dim, std::vector<Vec3>& out) {
+    forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
+        Scalar depth = std::numeric_limits<Scalar>::max();
+        for (int a = 0; a < dim; ++a) depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
+        if (depth < thickness) out.push_back(p);
+    });
+}
+
 int faceIndex(const std::string& face) {
     static const char* names[6] = {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"};
     for (int i = 0; i < 6; ++i)
@@ -84,6 +94,11 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
         for (const auto& name : fluid->keywords()) {
             const Box box = readBox(fluid->subDict(name), dim);
             add(points(box.min, box.max), "fluid." + name, fluid->locationOf(name));
+        }
+    if (const Dictionary* bodies = geometry.findDict("bodies"))
+        for (const auto& name : bodies->keywords()) {
+            const Box box = readBox(bodies->subDict(name), dim);
+            add(points(box.min, box.max), "bodies." + name, bodies->locationOf(name));
         }
     return e;
 }
@@ -153,16 +168,34 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 });
             } else { // solid box: outermost layers inside the surface
                 solids.push_back(box);
-                forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
-                    Scalar depth = std::numeric_limits<Scalar>::max();
-                    for (int a = 0; a < dim; ++a)
-                        depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
-                    if (depth < L) wallPositions.push_back(p);
-                });
+                solidBoxLayers(box, L, dx, dim, wallPositions);
             }
             if (wallPositions.empty())
                 throw InputError(w.where(), "wall '" + name + "' produced no particles (is it smaller than particleSpacing?)");
             w.checkAllKeywordsUsed();
+        }
+    }
+
+    // rigid bodies: solid blocks, each a system of its own (its mass properties and constraints
+    // are read by the caller, rigidBodyFrom)
+    if (const Dictionary* bodies = geometry.findDict("bodies")) {
+        for (const auto& name : bodies->keywords()) {
+            const Dictionary& b = bodies->subDict(name);
+            b.getWord("type", {"box"});
+            const Box box = readBox(b, dim);
+            const int layers = b.getOrDefault<int>("layers", 3);
+            if (layers < 1) throw InputError(b.locationOf("layers"), "'layers' must be at least 1", "layers");
+            if (name == "fluid" || (geometry.findDict("walls") && geometry.subDict("walls").found(name)))
+                throw InputError(bodies->locationOf(name), "a body may not share its name with the fluid or a wall", name);
+            solids.push_back(box);
+            SampledWall& sampled = out.walls.emplace_back();
+            sampled.name = name;
+            sampled.body = &b;
+            sampled.boxMin = box.min;
+            sampled.boxMax = box.max;
+            solidBoxLayers(box, layers * dx, dx, dim, sampled.positions);
+            if (sampled.positions.empty())
+                throw InputError(b.where(), "body '" + name + "' produced no particles (is it smaller than particleSpacing?)");
         }
     }
 

@@ -6,6 +6,8 @@
 //   walls { <name> { type container; min (..); max (..); layers 3; open (yMax); }   // hollow box
 //           <name> { type box; min (..); max (..); layers 3;                        // solid block
 //                    motion { type linear; velocity (0.5 0 0); } } ... }           // optional (Motion.hpp)
+//   bodies { <name> { type box; min (..); max (..); layers 3; density 500; ... } }  // rigid bodies
+//           (sampled as solid blocks; their mass, inertia and constraints: RigidBodySetUp.hpp)
 //   periodic { x (0 1); }   // optional: axis (min max); leaving at max re-enters at min
 //
 // Fluid particles sit at min + (i + ½)Δx. A container's wall particles continue that lattice
@@ -28,6 +30,8 @@ struct SampledWall {
     std::string name;
     std::vector<Vec3> positions;
     const Dictionary* motion = nullptr; // the entry's `motion { }`, read by the caller (Motion::read)
+    const Dictionary* body = nullptr;   // a `bodies` entry: the whole entry (rigidBodyFrom reads it)
+    Vec3 boxMin = Vec3::Zero(), boxMax = Vec3::Zero(); // the entry's box
 };
 
 struct SampledGeometry {
