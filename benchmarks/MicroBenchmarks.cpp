@@ -15,10 +15,12 @@ using namespace spindrift;
 
 namespace {
 
-struct Scene {
+struct BenchScene {
     Scene s;
+    ParticleSystem* fluid = nullptr;
     std::unique_ptr<Kernel> kernel;
     std::vector<std::unique_ptr<Dictionary>> dicts;
+    CoreServices core;
 
     template <class Base> std::unique_ptr<Base> make(const std::string& text, const std::string& solution = "") {
         dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(text, "bench")));
@@ -27,58 +29,69 @@ struct Scene {
             dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(solution, "bench")));
             sol = dicts.back().get();
         }
-        return ModelRegistry::instance().create<Base>(*dicts[dicts.size() - (sol ? 2 : 1)], s.physics, sol);
+        return ModelRegistry::instance().create<Base>(*dicts[dicts.size() - (sol ? 2 : 1)], s.physics, s.constants, sol);
     }
+    Step step(Scalar dt) const { return {s.time, dt, core}; }
 
-    explicit Scene(int side) {
+    explicit BenchScene(int side) {
         log::setQuiet(true);
         s.physics.dimension = 3;
         s.physics.rho0 = 1000;
         s.physics.particleSpacing = 0.01;
-        s.physics.supportRadius = 0.02; // 4r, as the speed reference
+        s.physics.supportRadiusFactor = 2; // h = 0.02 (4r), as the speed reference
         s.physics.gravity = Vec3(0, -9.81, 0);
+        s.constants.supportRadius = 0.02;
+        s.constants.rho0 = 1000;
         kernel = make<Kernel>("type cubicSpline;");
         s.kernel.build(*kernel);
         std::mt19937 rng(1);
         std::uniform_real_distribution<Scalar> jitter(-0.05, 0.05);
         const Scalar dx = s.physics.particleSpacing;
-        s.fluid.resize(std::size_t(side) * side * side);
-        s.fluid.setParticleMass(latticeParticleMass(s.kernel, s.physics));
+        fluid = &s.addSystem("fluid", SystemRole::fluid);
+        fluid->rho0 = 1000;
+        auto& set = fluid->particles;
+        set.resize(std::size_t(side) * side * side);
+        set.setParticleMass(latticeParticleMass(s.kernel, s.physics));
+        s.constants.particleMass = set.particleMass();
         std::size_t n = 0;
         for (int k = 0; k < side; ++k)
             for (int j = 0; j < side; ++j)
                 for (int i = 0; i < side; ++i, ++n) {
-                    s.fluid.position()[n] = Vec3((i + 0.5 + jitter(rng)) * dx, (j + 0.5 + jitter(rng)) * dx,
-                                                 (k + 0.5 + jitter(rng)) * dx);
-                    s.fluid.id()[n] = Index(n);
+                    set.position()[n] = Vec3((i + 0.5 + jitter(rng)) * dx, (j + 0.5 + jitter(rng)) * dx,
+                                             (k + 0.5 + jitter(rng)) * dx);
+                    set.id()[n] = Index(n);
                 }
         const Scalar L = side * dx;
-        s.search.setup(s.physics.supportRadius, 3, Vec3::Constant(-0.1 * L), Vec3::Constant(1.1 * L));
-        s.fluid.permute(s.search.sortOrder(s.fluid.position()));
-        s.search.build(s.fluid.position());
+        s.search.setup(s.constants.supportRadius, 3, Vec3::Constant(-0.1 * L), Vec3::Constant(1.1 * L));
+        s.registerWithSearch(*fluid);
+        set.permute(s.search.sortOrder(set.position()));
+        s.search.build();
     }
 };
 
 int sideFor(benchmark::State& state) { return int(state.range(0)); }
-void report(benchmark::State& state, const Scene& scene) {
-    state.counters["particles"] = double(scene.s.fluid.size());
-    state.counters["us/particle"] = benchmark::Counter(double(scene.s.fluid.size()),
-                                                       benchmark::Counter::kIsIterationInvariantRate |
-                                                           benchmark::Counter::kInvert);
-    state.counters["neighbours"] = double(scene.s.search.fluidNeighbours().totalPairs()) / scene.s.fluid.size();
+void report(benchmark::State& state, const BenchScene& scene) {
+    const double n = double(scene.fluid->size());
+    state.counters["particles"] = n;
+    state.counters["us/particle"] =
+        benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["neighbours"] = double(scene.s.listsOf(*scene.fluid).own().totalPairs()) / n;
 }
 
 void NeighbourSearchBuild(benchmark::State& state) {
-    Scene scene(sideFor(state));
-    for (auto _ : state) scene.s.search.build(scene.s.fluid.position());
+    BenchScene scene(sideFor(state));
+    for (auto _ : state) {
+        scene.s.search.positionsChanged(scene.fluid->index);
+        scene.s.search.build();
+    }
     report(state, scene);
 }
 
 // The order of the space-filling-curve re-sort (every few steps), on positions moved since
 // the last one.
 void SpaceFillingCurveOrder(benchmark::State& state) {
-    Scene scene(sideFor(state));
-    std::vector<Vec3> moved = scene.s.fluid.position();
+    BenchScene scene(sideFor(state));
+    std::vector<Vec3> moved = scene.fluid->particles.position();
     std::mt19937 rng(2);
     std::uniform_real_distribution<Scalar> step(-0.2, 0.2);
     for (Vec3& x : moved) x += scene.s.physics.particleSpacing * Vec3(step(rng), step(rng), step(rng));
@@ -87,31 +100,32 @@ void SpaceFillingCurveOrder(benchmark::State& state) {
 }
 
 void DensityPass(benchmark::State& state) {
-    Scene scene(sideFor(state));
-    for (auto _ : state) summationDensity(scene.s, scene.s.fluid.position(), scene.s.fluid.density());
+    BenchScene scene(sideFor(state));
+    auto& set = scene.fluid->particles;
+    for (auto _ : state) summationDensity(scene.s, *scene.fluid, set.position(), set.density());
     report(state, scene);
 }
 
 void WcsphForcePass(benchmark::State& state) {
-    Scene scene(sideFor(state));
+    BenchScene scene(sideFor(state));
     auto pressure = scene.make<PressureModel>("type wcsph; soundSpeed 20;");
     pressure->initialise(scene.s);
-    pressure->computeDensity(scene.s);
-    for (auto _ : state) pressure->addPressureAcceleration(scene.s, 1e-4);
+    pressure->computeDensity(scene.s, *scene.fluid, scene.step(1e-4));
+    for (auto _ : state) pressure->addPressureAcceleration(scene.s, *scene.fluid, scene.step(1e-4));
     report(state, scene);
 }
 
 void ArtificialViscosityPass(benchmark::State& state) {
-    Scene scene(sideFor(state));
-    scene.s.soundSpeed = 20;
+    BenchScene scene(sideFor(state));
+    scene.s.constants.soundSpeed = 20;
     auto viscosity = scene.make<ViscosityModel>("type artificial;");
     viscosity->initialise(scene.s);
-    for (auto _ : state) viscosity->addAcceleration(scene.s, 1e-4);
+    for (auto _ : state) viscosity->addAcceleration(scene.s, *scene.fluid, scene.step(1e-4));
     report(state, scene);
 }
 
 void PcisphOneIteration(benchmark::State& state) {
-    Scene scene(sideFor(state));
+    BenchScene scene(sideFor(state));
     const auto pressures = ModelRegistry::instance().available("pressure");
     if (std::find(pressures.begin(), pressures.end(), "pcisph") == pressures.end()) {
         state.SkipWithError("pcisph plugin not built");
@@ -119,15 +133,15 @@ void PcisphOneIteration(benchmark::State& state) {
     }
     auto pcisph = scene.make<PressureModel>("type pcisph;", "minIterations 1; maxIterations 1;");
     pcisph->initialise(scene.s);
-    pcisph->computeDensity(scene.s);
-    for (auto _ : state) pcisph->addPressureAcceleration(scene.s, 1e-3);
+    pcisph->computeDensity(scene.s, *scene.fluid, scene.step(1e-3));
+    for (auto _ : state) pcisph->addPressureAcceleration(scene.s, *scene.fluid, scene.step(1e-3));
     report(state, scene);
 }
 
 void SymplecticEulerStep(benchmark::State& state) {
-    Scene scene(sideFor(state));
+    BenchScene scene(sideFor(state));
     auto integrator = scene.make<Integrator>("type symplecticEuler;");
-    for (auto _ : state) integrator->step(scene.s, 1e-6, [] {});
+    for (auto _ : state) integrator->step(scene.s, scene.core, 1e-6, [](double, Scalar) {});
     report(state, scene);
 }
 

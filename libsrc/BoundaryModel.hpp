@@ -1,22 +1,24 @@
-// Spindrift — boundary model interface (plugins/boundary): how wall particles act on the fluid.
-// initialise() runs once every wall system exists, before the pressure model's: it gives each
-// wall its particles' masses M_b and says whether the wall mirrors the fluid's pressure or has
-// its own (WallSystem::mass, pressureMirrored, viscousVelocity). update() runs at every
-// evaluation once the fluid's density and pressure are known (after computeDensity), e.g. to
-// extrapolate the walls' pressure; pressure solvers that change the fluid's pressure in their
-// iterations call updatePressure() to carry the change to the walls.
+// Spindrift — boundary model interface (plugins/boundary): how the particles of boundary systems
+// (walls and bodies) act on the fluid. initialise() runs once every system exists, before the
+// pressure model's: it gives each boundary its particles' masses M_b and says whether it mirrors
+// the fluid's pressure or has its own (ParticleSystem::mass, pressureMirrored, viscousVelocity).
+// update() runs at every evaluation once the fluids' density and pressure are known (after
+// computeDensity), e.g. to extrapolate the boundaries' pressure; a pressure solver that changes
+// a fluid's pressure in its iterations has the core carry the change to the boundaries
+// (StepServices::updateBoundaryPressure, which calls updatePressure).
 #pragma once
 
-#include "ModelContext.hpp"
+#include "Model.hpp"
+#include "Step.hpp"
 
 namespace spindrift {
 
-class BoundaryModel {
+class BoundaryModel : public Model {
 public:
-    virtual ~BoundaryModel() = default;
-    virtual void initialise(Scene& scene) = 0;
-    virtual void update(Scene&) {}
-    virtual void updatePressure(Scene&, const std::vector<Scalar>& /*fluidPressure*/) {}
+    void initialise(Scene& scene) override = 0;
+    virtual void update(Scene&, const Step&) {}
+    // The boundaries' own pressure from pressure p of 'fluid' (no-op for mirrored boundaries).
+    virtual void updatePressure(Scene&, const ParticleSystem& /*fluid*/, const std::vector<Scalar>& /*p*/) {}
 };
 
 } // namespace spindrift

@@ -2,7 +2,9 @@
 
 #include "Log.hpp"
 
+#include <atomic>
 #include <cerrno>
+#include <fcntl.h>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -56,12 +58,23 @@ PhysicalParameters readPhysicalParameters(const Dictionary& d) {
           << (factor > 6 ? "many" : "few") << " neighbours; use a value between 1.5 and 6 (typically 2-3)";
         throw InputError(d.locationOf("supportRadius"), s.str(), "supportRadius");
     }
-    p.supportRadius = Scalar(factor) * p.particleSpacing;
+    p.supportRadiusFactor = Scalar(factor);
     d.checkAllKeywordsUsed();
     return p;
 }
 
 namespace {
+// The lock of this process for releaseInSignalHandler: fixed buffers a signal handler may read,
+// published by 'lockRegistered' once complete.
+char lockPath[4096], lockTempPath[4096], lockContent[300];
+std::atomic<bool> lockRegistered{false};
+
+bool copyInto(char* buffer, std::size_t size, const std::string& text) {
+    if (text.size() + 1 > size) return false;
+    std::memcpy(buffer, text.c_str(), text.size() + 1);
+    return true;
+}
+
 std::string hostName() {
     char host[256] = {};
     if (gethostname(host, sizeof host - 1) != 0) return "unknown";
@@ -75,6 +88,20 @@ CaseLock::CaseLock(const fs::path& caseDir) : file_(file(caseDir)) {
     fs::path mine = file_;
     mine += '.';
     mine += std::to_string(getpid());
+    // a signal that ends the process during set-up (stopAtOnceOnSignalsDuringSetUp) removes the
+    // lock if it is this process's (its content says so) and the temporary file; registered
+    // here, withdrawn unless this lock ends up owning the file
+    struct Registration {
+        bool mine = false;
+        const bool& owner;
+        ~Registration() {
+            if (mine && !owner) lockRegistered.store(false);
+        }
+    } registration{false, owner_};
+    if (!lockRegistered.load() && copyInto(lockPath, sizeof lockPath, file_.string()) &&
+        copyInto(lockTempPath, sizeof lockTempPath, mine.string()) &&
+        copyInto(lockContent, sizeof lockContent, me + "\n"))
+        lockRegistered.store(registration.mine = true);
     {
         std::ofstream out(mine, std::ios::trunc);
         out << me << '\n';
@@ -117,7 +144,22 @@ CaseLock::CaseLock(const fs::path& caseDir) : file_(file(caseDir)) {
 
 CaseLock::~CaseLock() {
     std::error_code ec;
-    if (owner_) fs::remove(file_, ec);
+    if (owner_) {
+        lockRegistered.store(false);
+        fs::remove(file_, ec);
+    }
+}
+
+void CaseLock::releaseInSignalHandler() noexcept {
+    if (!lockRegistered.load()) return;
+    ::unlink(lockTempPath);
+    const int fd = ::open(lockPath, O_RDONLY);
+    if (fd < 0) return;
+    char text[sizeof lockContent];
+    const ssize_t n = ::read(fd, text, sizeof text);
+    ::close(fd);
+    const std::size_t length = std::strlen(lockContent);
+    if (n == ssize_t(length) && std::memcmp(text, lockContent, length) == 0) ::unlink(lockPath);
 }
 
 bool isTimeName(const std::string& name) {
@@ -137,7 +179,7 @@ void copyCaseInput(const fs::path& source, const fs::path& target) {
         const std::string name = entry.path().filename().string();
         if (name.empty() || name[0] == '.') continue;
         if (entry.is_directory()) {
-            if (isTimeName(name) || name == "postProcessing" || name == "run") continue;
+            if (isTimeName(name) || name == "postProcessing" || name == "previousRun" || name == "run") continue;
         } else {
             const std::string ext = entry.path().extension().string();
             if (name.rfind("log.", 0) == 0 || ext == ".pvd" || ext == ".png" || ext == ".tmp") continue;

@@ -27,9 +27,9 @@ struct Case {
 PhysicalParameters readPhysicalParameters(const Dictionary& fluidProperties);
 
 // Copies a case's input to 'target' (created; it must not exist or be empty): everything but
-// what a run leaves behind (time directories, .<time>.tmp, postProcessing/, log.*, *.pvd,
-// plots, hidden files), as OpenFOAM's cloneCase. Tests, the bench utilities and ./Allrun copy
-// tutorials with it, so they never read another run's results.
+// what a run leaves behind (time directories, .<time>.tmp, postProcessing/, previousRun/, log.*,
+// *.pvd, plots, hidden files), as OpenFOAM's cloneCase. Tests, the bench utilities and ./Allrun
+// copy tutorials with it, so they never read another run's results.
 void copyCaseInput(const std::filesystem::path& source, const std::filesystem::path& target);
 // The case's lock: <case>/.spindrift.lock holding "pid host", so that two solvers never write
 // into one case (the second would overwrite or delete the first's time directories). Taken
@@ -37,11 +37,15 @@ void copyCaseInput(const std::filesystem::path& source, const std::filesystem::p
 // A lock whose pid is dead on this host is stale (a killed run): taken over with a warning.
 // A live one (or one from another host, which cannot be checked) is an InputError naming the
 // pid and host. A second lock by the same process (tests running two Simulations) shares it.
-// Removed by the destructor; a run killed by SIGKILL leaves a stale lock, taken over next time.
+// Removed by the destructor, or by releaseInSignalHandler() when a signal ends the process
+// (SIGINT during set-up); a run killed by SIGKILL leaves a stale lock, taken over next time.
 class CaseLock {
 public:
     explicit CaseLock(const std::filesystem::path& caseDir);
     ~CaseLock();
+    // Removes this process's lock file (and the temporary one it is made from), if any: for a
+    // signal handler that ends the process (async-signal-safe: open, read, close, unlink).
+    static void releaseInSignalHandler() noexcept;
     CaseLock(const CaseLock&) = delete;
     CaseLock& operator=(const CaseLock&) = delete;
     static std::filesystem::path file(const std::filesystem::path& caseDir) { return caseDir / ".spindrift.lock"; }

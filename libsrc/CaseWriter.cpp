@@ -1,7 +1,7 @@
 // Spindrift — case output: VTK XML PolyData per set and time, .pvd collection at the root.
 //
 // File layout (see CaseWriter.hpp):
-//   <case>/<time>/fluid.vtp, <case>/<time>/<wall>.vtp (each wall system written that time),
+//   <case>/<time>/fluid.vtp, <case>/<time>/<system>.vtp (each other system written that time),
 //   <case>/<caseName>.pvd listing every complete time with relative paths, a part per system.
 // Arrays in a .vtp: points = positions; point data "id" (vtkTypeUInt32Array, i.e. VTK's
 // "UInt32", the type of Index), then the selected scalar (1 component) and vector
@@ -10,6 +10,7 @@
 #include "CaseWriter.hpp"
 
 #include "Error.hpp"
+#include "Log.hpp"
 
 #include <cerrno>
 #include <csignal>
@@ -83,9 +84,9 @@ private:
 };
 
 bool selected(const std::string& name, const FieldOptions& options,
-              const std::vector<std::string>& fieldNames) {
+              const std::vector<std::string>& fieldNames, bool restartFields) {
     if (options.scratch || options.undefined) return false;
-    if (options.restart) return true;
+    if (options.restart && restartFields) return true;
     if (fieldNames.empty()) return options.output;
     return std::find(fieldNames.begin(), fieldNames.end(), name) != fieldNames.end();
 }
@@ -115,9 +116,9 @@ vtkSmartPointer<VtkScalarArray> vectorArray(const std::string& name,
     return array;
 }
 
-// True when 'name' is a number written as a whole (what timeName produces).
-bool parseTimeName(const std::string& name, double& value) {
-    if (name.empty() || name.front() == '.') return false;
+// True when 'name' is a finite number written as a whole (strtod reads all of it).
+bool parseNumber(const std::string& name, double& value) {
+    if (name.empty()) return false;
     const char* begin = name.c_str();
     char* end = nullptr;
     value = std::strtod(begin, &end);
@@ -142,27 +143,28 @@ bool endsWithClosingTag(const fs::path& file) {
            text.compare(last + 1 - tag.size(), tag.size(), tag) == 0;
 }
 
-// Writes 'text' to 'file' through "<file>.tmp" and a rename.
-void writeFileAtomically(const fs::path& file, const std::string& text) {
-    fs::path tmp = file;
-    tmp += ".tmp";
-    std::error_code ec;
-    {
-        errno = 0;
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (out) out << text;
-        if (out) out.close();
-        if (!out) {
-            const int error = errno; // (before the remove sets another)
-            fs::remove(tmp, ec);
-            throw std::runtime_error(describeWriteFailure(tmp.string(), error));
-        }
+// Writes 'text' to 'file' (complete, or an exception naming it and nothing left).
+void writeTextFile(const fs::path& file, const std::string& text) {
+    errno = 0;
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    if (out) out << text;
+    if (out) out.close();
+    if (!out) {
+        const int error = errno; // (before the remove sets another)
+        std::error_code ec;
+        fs::remove(file, ec);
+        throw std::runtime_error(describeWriteFailure(file.string(), error));
     }
-    fs::rename(tmp, file, ec);
+}
+
+// Renames 'from' to 'to' (replacing a file), or an exception naming both.
+void renameFile(const fs::path& from, const fs::path& to) {
+    std::error_code ec;
+    fs::rename(from, to, ec);
     if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot rename '" + tmp.string() + "' to '" + file.string() +
-                                 "'");
+        std::error_code ignored;
+        fs::remove(from, ignored);
+        throw std::runtime_error("cannot rename '" + from.string() + "' to '" + to.string() + "': " + ec.message());
     }
 }
 
@@ -172,7 +174,7 @@ void writeFileAtomically(const fs::path& file, const std::string& text) {
 // .vtp files
 
 void writeVtp(const fs::path& file, const ParticleSet& set,
-              const std::vector<std::string>& fieldNames) {
+              const std::vector<std::string>& fieldNames, bool restartFields, bool compressed) {
     const std::size_t n = set.size();
     const auto count = static_cast<vtkIdType>(n);
 
@@ -216,12 +218,12 @@ void writeVtp(const fs::path& file, const ParticleSet& set,
         pointData->AddArray(id);
     }
     for (const auto& f : set.scalarFields()) {
-        if (f->data.size() != n || !selected(f->name, f->options, fieldNames)) continue;
+        if (f->data.size() != n || !selected(f->name, f->options, fieldNames, restartFields)) continue;
         pointData->AddArray(scalarArray(f->name, f->data));
     }
     for (const auto& f : set.vectorFields()) {
         if (f->name == "position" || f->data.size() != n ||
-            !selected(f->name, f->options, fieldNames))
+            !selected(f->name, f->options, fieldNames, restartFields))
             continue;
         pointData->AddArray(vectorArray(f->name, f->data));
     }
@@ -242,7 +244,8 @@ void writeVtp(const fs::path& file, const ParticleSet& set,
     writer->SetInputData(poly);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff(); // raw binary
-    writer->SetCompressorTypeToNone();
+    if (compressed) writer->SetCompressorTypeToLZ4();
+    else writer->SetCompressorTypeToNone();
     writer->SetHeaderTypeToUInt64(); // arrays above 4 GiB
     const int ok = writer->Write();
     // A system error (VTK keeps errno as its error code: ENOSPC on a full disk, after removing
@@ -335,14 +338,21 @@ ParticleSet readVtp(const fs::path& file, const std::string& setName) {
 // ---------------------------------------------------------------------------------------------
 // CaseWriter
 
-CaseWriter::CaseWriter(fs::path caseDir, int timePrecision)
-    : caseDir_(std::move(caseDir)), precision_(timePrecision) {}
+CaseWriter::CaseWriter(fs::path caseDir, int timePrecision, double earliestTime)
+    : caseDir_(std::move(caseDir)), precision_(timePrecision), earliestTime_(earliestTime) {}
 
 std::string CaseWriter::timeName(double time, int precision) {
     if (time == 0) time = 0; // no "-0"
     std::ostringstream s;
     s << std::setprecision(precision) << time;
     return s.str();
+}
+
+bool CaseWriter::isTimeName(const std::string& name, double& value) const {
+    if (!parseNumber(name, value) || value < earliestTime_) return false;
+    for (int digits = 1; digits <= 17; ++digits)
+        if (timeName(value, digits) == name) return true;
+    return false;
 }
 
 fs::path CaseWriter::collectionFile() const {
@@ -364,7 +374,7 @@ std::vector<std::pair<double, std::string>> CaseWriter::existingTimes() const {
         if (!it->is_directory(entryEc)) continue;
         const std::string name = it->path().filename().string();
         double value = 0;
-        if (!parseTimeName(name, value)) continue; // also skips hidden ".<time>.tmp"
+        if (!isTimeName(name, value)) continue; // also skips hidden ".<time>.tmp"
         if (!fs::is_regular_file(it->path() / "fluid.vtp", entryEc)) continue;
         times.emplace_back(value, name);
     }
@@ -373,8 +383,8 @@ std::vector<std::pair<double, std::string>> CaseWriter::existingTimes() const {
 }
 
 namespace {
-// The wall systems a time directory holds: its .vtp files but fluid.vtp, sorted.
-std::vector<std::string> wallFilesIn(const fs::path& dir) {
+// The systems but the fluid a time directory holds: its .vtp files but fluid.vtp, sorted.
+std::vector<std::string> otherFilesIn(const fs::path& dir) {
     std::vector<std::string> walls;
     std::error_code ec;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
@@ -384,37 +394,86 @@ std::vector<std::string> wallFilesIn(const fs::path& dir) {
     std::sort(walls.begin(), walls.end());
     return walls;
 }
+
+// Test hook: SPINDRIFT_FAULT_INJECTION=<what>:N kills the process at the N-th time it passes
+// the point 'what' names (killDuringWrite, killAfterRename).
+void maybeKill(const char* what) {
+    const char* v = std::getenv("SPINDRIFT_FAULT_INJECTION");
+    if (!v) return;
+    const std::string prefix = std::string(what) + ":";
+    if (std::string(v).rfind(prefix, 0) != 0) return;
+    static std::map<std::string, int> passes;
+    if (++passes[what] == std::atoi(v + prefix.size())) ::raise(SIGKILL);
+}
+
+// Removes what was moved to 'old' to make way for a new time; what cannot be removed (a
+// directory of another user, mode 000) stays there, named in a warning.
+void removeReplaced(const fs::path& old, const std::string& what) {
+    std::error_code ec;
+    fs::remove_all(old, ec);
+    if (ec)
+        log::warning(what + ": the earlier contents could not be removed (" + ec.message() + "); they are kept in " +
+                     old.string() + ": remove it by hand");
+}
+
+// Whether anything (a directory, a file, a link, even a dangling one) has this path.
+bool anythingAt(const fs::path& p) {
+    std::error_code ec;
+    return fs::exists(fs::symlink_status(p, ec));
+}
 } // namespace
 
-void CaseWriter::scan() {
+CaseWriter::RunStart CaseWriter::beginRun(double from, const std::string& continued) {
+    RunStart start;
+    double continuedValue = 0;
+    const bool continuing = !continued.empty() && parseNumber(continued, continuedValue);
+    const std::string fromName = timeName(from, precision_);
+    // the entries named as later times, and the listed ones
+    std::vector<std::pair<double, std::string>> later;
+    std::error_code ec;
+    for (fs::directory_iterator it(caseDir_, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        double value = 0;
+        if (!isTimeName(name, value)) continue;
+        const bool isLater =
+            continuing ? value > continuedValue && name != continued : value >= from || name == fromName;
+        if (isLater) later.emplace_back(value, name);
+    }
+    std::sort(later.begin(), later.end());
     times_.clear();
-    for (auto& [value, name] : existingTimes()) times_.push_back({value, name, wallFilesIn(caseDir_ / name)});
-    scanned_ = true;
+    for (const auto& [value, name] : existingTimes()) {
+        const bool moved = std::any_of(later.begin(), later.end(), [&](const auto& l) { return l.second == name; });
+        if (moved) continue;
+        if (continuing) times_.push_back({value, name, otherFilesIn(caseDir_ / name)});
+        else start.notListed.push_back(name);
+    }
+    written_.clear();
+    writeCollection(); // first: it never lists a time that is being moved
+    if (later.empty()) return start;
+    const fs::path aside = caseDir_ / "previousRun";
+    if (anythingAt(aside)) {
+        fs::remove_all(aside, ec);
+        if (ec)
+            throw std::runtime_error("cannot remove '" + aside.string() + "' (" + ec.message() +
+                                     ") to move the times of an earlier run there; remove it by hand");
+        start.replacedPreviousRun = true;
+    }
+    fs::create_directory(aside, ec);
+    if (ec) throw std::runtime_error("cannot create '" + aside.string() + "': " + ec.message());
+    for (const auto& [value, name] : later) {
+        fs::rename(caseDir_ / name, aside / name, ec);
+        if (ec)
+            throw std::runtime_error("cannot move '" + (caseDir_ / name).string() + "' (an earlier run's time " + name +
+                                     ") to '" + aside.string() + "': " + ec.message() +
+                                     "; remove it (or make it writable): this run would mix it into its results");
+        start.movedAside.push_back(name);
+    }
+    return start;
 }
 
-void CaseWriter::rebuildCollection() {
-    scan();
-    writeCollection();
-}
-
-namespace {
-// Test hook: SPINDRIFT_FAULT_INJECTION=killDuringWrite:N kills the process during write N.
-void maybeKillDuringWrite() {
-    static int writes = 0;
-    static const int killAt = [] {
-        const char* v = std::getenv("SPINDRIFT_FAULT_INJECTION");
-        const std::string prefix = "killDuringWrite:";
-        if (!v || std::string(v).rfind(prefix, 0) != 0) return -1;
-        return std::atoi(v + prefix.size());
-    }();
-    if (++writes == killAt) ::raise(SIGKILL);
-}
-} // namespace
-
-void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<const ParticleSet*>& walls,
+void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<SystemFile>& others,
                        const std::vector<std::string>& fieldNames,
                        const std::vector<std::pair<std::string, std::string>>& extraFiles) {
-    if (!scanned_) scan();
     const std::string name = timeName(time, precision_);
     // two times of one name: the second would replace the first's results (the schedule is
     // checked before the run; this catches what it cannot foresee, e.g. writeControl timeStep
@@ -428,6 +487,9 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
     }
     const fs::path finalDir = caseDir_ / name;
     const fs::path tmpDir = caseDir_ / ("." + name + ".tmp");
+    const fs::path old = caseDir_ / ("." + name + ".old");
+    fs::path collectionTmp = collectionFile();
+    collectionTmp += ".tmp";
 
     std::error_code ec;
     fs::create_directories(caseDir_, ec);
@@ -441,74 +503,69 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
                                      : "cannot create '" + tmpDir.string() + "': " +
                                            (ec ? ec.message() : std::string("it exists")));
 
-    std::vector<std::string> wallNames;
+    // the list of times with this one (replacing an entry of the same name)
+    std::vector<TimeEntry> times = times_;
+    TimeEntry entry{time, name, {}};
+    parseNumber(name, entry.value);
+    bool replacing = false;
     try {
-        writeVtp(tmpDir / "fluid.vtp", fluid, fieldNames);
-        for (const ParticleSet* w : walls) {
-            writeVtp(tmpDir / (w->name() + ".vtp"), *w, fieldNames);
-            wallNames.push_back(w->name());
+        writeVtp(tmpDir / "fluid.vtp", fluid, fieldNames, true);
+        for (const SystemFile& o : others) {
+            writeVtp(tmpDir / (o.set->name() + ".vtp"), *o.set, fieldNames, o.restart, !o.restart);
+            entry.others.push_back(o.set->name());
         }
-        // Rewriting a time that held fixed walls not written now: keep them, later times
-        // refer to them.
-        for (const std::string& old : wallFilesIn(finalDir))
-            if (std::find(wallNames.begin(), wallNames.end(), old) == wallNames.end()) {
-                fs::copy_file(finalDir / (old + ".vtp"), tmpDir / (old + ".vtp"));
-                wallNames.push_back(old);
-            }
-        std::sort(wallNames.begin(), wallNames.end());
+        std::sort(entry.others.begin(), entry.others.end());
         for (const auto& [relative, content] : extraFiles) {
             const fs::path file = tmpDir / relative;
             fs::create_directories(file.parent_path());
-            errno = 0;
-            std::ofstream out(file);
-            if (out) out << content;
-            if (out) out.close();
-            if (!out) throw std::runtime_error(describeWriteFailure(file.string(), errno));
+            writeTextFile(file, content);
         }
-        maybeKillDuringWrite();
-        if (fs::exists(finalDir, ec)) {
-            // keep the old directory until the new one is in place
-            const fs::path old = caseDir_ / ("." + name + ".old");
-            fs::remove_all(old, ec);
+        std::erase_if(times, [&](const TimeEntry& e) { return e.name == name; });
+        times.insert(std::upper_bound(times.begin(), times.end(), entry,
+                                      [](const TimeEntry& a, const TimeEntry& b) {
+                                          return a.value < b.value || (a.value == b.value && a.name < b.name);
+                                      }),
+                     entry);
+        // the .pvd with this time, ready before the directory's rename: renamed right after it
+        writeTextFile(collectionTmp, collectionText(times));
+        maybeKill("killDuringWrite");
+        // whatever has the name (an earlier write of this time, a dangling link) is set aside
+        // until the new directory is in place
+        if (anythingAt(finalDir)) {
+            if (anythingAt(old)) {
+                fs::remove_all(old, ec);
+                if (ec)
+                    throw std::runtime_error("cannot remove '" + old.string() + "' (" + ec.message() +
+                                             ", left by an earlier write of this time); remove it by hand");
+            }
             fs::rename(finalDir, old);
-            fs::rename(tmpDir, finalDir);
-            fs::remove_all(old, ec);
-        } else {
-            fs::rename(tmpDir, finalDir);
+            replacing = true;
         }
-    } catch (const fs::filesystem_error& e) {
-        fs::remove_all(tmpDir, ec);
-        if (e.code() == std::errc::no_space_on_device)
-            throw std::runtime_error(describeWriteFailure(e.path1().string(), ENOSPC) + ": time " + name +
-                                     " not written; the times written before it are complete");
-        throw std::runtime_error("cannot write time directory '" + finalDir.string() +
-                                 "': " + e.what());
+        fs::rename(tmpDir, finalDir);
     } catch (const std::exception& e) {
         // the part written is removed (on a full disk, the space it took is given back); the
         // times written before are untouched
         fs::remove_all(tmpDir, ec);
+        fs::remove(collectionTmp, ec);
+        if (replacing && !anythingAt(finalDir)) fs::rename(old, finalDir, ec); // put back
+        const auto* fsError = dynamic_cast<const fs::filesystem_error*>(&e);
+        if (fsError && fsError->code() == std::errc::no_space_on_device)
+            throw std::runtime_error(describeWriteFailure(fsError->path1().string(), ENOSPC) + ": time " + name +
+                                     " not written; the times written before it are complete");
+        if (fsError)
+            throw std::runtime_error("cannot write time directory '" + finalDir.string() + "': " + e.what() +
+                                     "; the times written before it are complete");
         throw std::runtime_error(std::string(e.what()) + ": time " + name +
                                  " not written; the times written before it are complete");
     }
-
-    // Update the list of complete times (replace an entry of the same name).
-    double value = 0;
-    if (!parseTimeName(name, value)) value = time;
-    std::erase_if(times_, [&](const TimeEntry& e) { return e.name == name; });
-    TimeEntry entry{value, name, wallNames};
-    auto pos = std::upper_bound(times_.begin(), times_.end(), entry,
-                                [](const TimeEntry& a, const TimeEntry& b) {
-                                    return a.value < b.value ||
-                                           (a.value == b.value && a.name < b.name);
-                                });
-    times_.insert(pos, entry);
+    maybeKill("killAfterRename");
+    renameFile(collectionTmp, collectionFile());
+    times_ = std::move(times);
     written_[name] = time;
-
-    writeCollection();
+    if (replacing) removeReplaced(old, "time " + name);
 }
 
 std::vector<std::string> CaseWriter::removeTimesWrittenAfter(double time) {
-    if (!scanned_) scan();
     std::vector<std::string> removed;
     for (const auto& [name, value] : written_)
         if (value > time && timeName(time, precision_) != name) removed.push_back(name);
@@ -523,38 +580,45 @@ std::vector<std::string> CaseWriter::removeTimesWrittenAfter(double time) {
         std::error_code ec;
         fs::remove_all(hidden, ec);
         fs::rename(caseDir_ / name, hidden, ec);
-        if (!ec) fs::remove_all(hidden, ec);
+        if (ec)
+            log::warning("time " + name + " (abandoned) could not be removed: " + ec.message());
+        else
+            removeReplaced(hidden, "time " + name + " (abandoned)");
     }
     return removed;
 }
 
-void CaseWriter::writeCollection() const {
+std::string CaseWriter::collectionText(const std::vector<TimeEntry>& times) const {
     std::ostringstream s;
     s << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
-    // every wall system ever written gets a part of its own, in name order; at each time it
-    // shows the newest <wall>.vtp at or before that time
-    std::map<std::string, std::string> newest; // wall -> time directory
-    for (const auto& e : times_)
-        for (const auto& w : e.walls) newest.emplace(w, "");
-    for (const auto& e : times_) {
-        for (const auto& w : e.walls) newest[w] = e.name;
+    // every other system of the times listed gets a part of its own, in name order (the same
+    // part number at every time); each time shows the systems its directory holds
+    std::map<std::string, int> part;
+    for (const auto& e : times)
+        for (const auto& w : e.others) part.emplace(w, 0);
+    int next = 1;
+    for (auto& [wall, number] : part) number = next++;
+    for (const auto& e : times) {
         s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"0\" file=\""
           << e.name << "/fluid.vtp\" name=\"fluid\"/>\n";
-        int part = 1;
-        for (const auto& [wall, dir] : newest) {
-            if (!dir.empty())
-                s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"" << part << "\" file=\""
-                  << dir << "/" << wall << ".vtp\" name=\"" << wall << "\"/>\n";
-            ++part;
-        }
+        for (const auto& w : e.others)
+            s << "    <DataSet timestep=\"" << e.name << "\" group=\"\" part=\"" << part[w] << "\" file=\""
+              << e.name << "/" << w << ".vtp\" name=\"" << w << "\"/>\n";
     }
     s << "  </Collection>\n"
       << "</VTKFile>\n";
+    return s.str();
+}
+
+void CaseWriter::writeCollection() const {
     std::error_code ec;
     fs::create_directories(caseDir_, ec);
-    writeFileAtomically(collectionFile(), s.str());
+    fs::path tmp = collectionFile();
+    tmp += ".tmp";
+    writeTextFile(tmp, collectionText(times_));
+    renameFile(tmp, collectionFile());
 }
 
 } // namespace spindrift

@@ -15,6 +15,9 @@ namespace spindrift {
 class FunctionObject {
 public:
     virtual ~FunctionObject() = default;
+    // Called once after set-up, before start(): asks the core for what it needs computed beyond
+    // the run itself, e.g. the forces on walls and bodies (Scene::reactions.want).
+    virtual void require(Scene&) {}
     // Called once after set-up, with the start time (the output folder's name).
     virtual void start(const Scene&, double startTime) { (void)startTime; }
     // Called after each step; 'writeTime' is true when the solver writes a time directory.

@@ -87,6 +87,16 @@ void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedN
     }
 }
 
+// The lattice points of a solid box that lie within 'thickness' of its surface (its outermost
+// layers), appended to 'out'.
+void solidBoxLayers(const Box& box, Scalar thickness, Scalar dx, int dim, std::vector<Vec3>& out) {
+    forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
+        Scalar depth = std::numeric_limits<Scalar>::max();
+        for (int a = 0; a < dim; ++a) depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
+        if (depth < thickness) out.push_back(p);
+    });
+}
+
 int faceIndex(const std::string& face) {
     static const char* names[6] = {"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"};
     for (int i = 0; i < 6; ++i)
@@ -257,6 +267,11 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
             add(n, "fluid." + name, fluid->locationOf(name));
             e.fluid += n;
         }
+    if (const Dictionary* bodies = geometry.findDict("bodies"))
+        for (const auto& name : bodies->keywords()) {
+            const Box box = readBox(bodies->subDict(name), dim);
+            add(points(box.min, box.max), "bodies." + name, bodies->locationOf(name));
+        }
     return e;
 }
 
@@ -327,16 +342,36 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 solids.push_back(solid);
                 sampled.min = solid.min;
                 sampled.max = solid.max;
-                forEachLatticePoint(solid.min, solid.max, dx, dim, [&](const Vec3& p) {
-                    Scalar depth = std::numeric_limits<Scalar>::max();
-                    for (int a = 0; a < dim; ++a)
-                        depth = std::min({depth, p[a] - solid.min[a], solid.max[a] - p[a]});
-                    if (depth < L) wallPositions.push_back(p);
-                });
+                solidBoxLayers(solid, L, dx, dim, wallPositions);
             }
             if (wallPositions.empty())
                 throw InputError(w.where(), "wall '" + name + "' produced no particles (is it smaller than particleSpacing?)");
             w.checkAllKeywordsUsed();
+        }
+    }
+
+    // rigid bodies: solid blocks, each a system of its own (its mass properties and constraints
+    // are read by the caller, rigidBodyFrom)
+    if (const Dictionary* bodies = geometry.findDict("bodies")) {
+        for (const auto& name : bodies->keywords()) {
+            const Dictionary& b = bodies->subDict(name);
+            b.getWord("type", {"box"});
+            const Box box = readBox(b, dim);
+            const int layers = b.getOrDefault<int>("layers", 3);
+            if (layers < 1) throw InputError(b.locationOf("layers"), "'layers' must be at least 1", "layers");
+            if (name == "fluid" || (geometry.findDict("walls") && geometry.subDict("walls").found(name)))
+                throw InputError(bodies->locationOf(name), "a body may not share its name with the fluid or a wall", name);
+            checkName(*bodies, name, "body");
+            solids.push_back(box);
+            SampledWall& sampled = out.walls.emplace_back();
+            sampled.name = name;
+            sampled.where = bodies->locationOf(name);
+            sampled.min = box.min;
+            sampled.max = box.max;
+            sampled.body = &b;
+            solidBoxLayers(box, layers * dx, dx, dim, sampled.positions);
+            if (sampled.positions.empty())
+                throw InputError(b.where(), "body '" + name + "' produced no particles (is it smaller than particleSpacing?)");
         }
     }
 
@@ -438,7 +473,16 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     // every block (stacked blocks start as one column)
     out.fluidDepths.assign(out.fluidPositions.size(), Scalar(0));
     if (std::find(hydrostaticParticle.begin(), hydrostaticParticle.end(), char(1)) != hydrostaticParticle.end()) {
-        const std::vector<Scalar> depths = depthsBelowFreeSurface(out.fluidPositions, up, dx, dim);
+        // a body in the water does not end its column: the water below it bears it (filled with
+        // its lattice for the columns, exact for a body of the water's density)
+        std::vector<Vec3> columns = out.fluidPositions;
+        if (const Dictionary* bodies = geometry.findDict("bodies"))
+            for (const auto& name : bodies->keywords()) {
+                const Box box = readBox(bodies->subDict(name), dim);
+                forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) { columns.push_back(p); });
+            }
+        std::vector<Scalar> depths = depthsBelowFreeSurface(columns, up, dx, dim);
+        depths.resize(out.fluidPositions.size());
         for (std::size_t i = 0; i < depths.size(); ++i)
             if (hydrostaticParticle[i]) out.fluidDepths[i] = depths[i];
     }

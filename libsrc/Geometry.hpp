@@ -6,6 +6,8 @@
 //   walls { <name> { type container; min (..); max (..); layers 3; open (yMax); }   // hollow box
 //           <name> { type box; min (..); max (..); layers 3;                        // solid block
 //                    motion { type linear; velocity (0.5 0 0); } } ... }           // optional (Motion.hpp)
+//   bodies { <name> { type box; min (..); max (..); layers 3; density 500; ... } }  // rigid bodies
+//           (sampled as solid blocks; their mass, inertia and constraints: RigidBodySetUp.hpp)
 //   periodic { x (0 1); }   // optional: axis (min max); leaving at max re-enters at min
 //
 // Fluid particles sit at min + (i + ½)Δx. A container's wall particles continue that lattice
@@ -38,6 +40,7 @@ struct SampledWall {
     SourceLocation where; // the wall's entry in constant/geometry
     std::vector<Vec3> positions;
     const Dictionary* motion = nullptr; // the entry's `motion { }`, read by the caller (Motion::read)
+    const Dictionary* body = nullptr;   // a `bodies` entry: the whole entry (rigidBodyFrom reads it)
     // The space it occupies as sampled: a solid box [min, max], or a container's shell, 'thickness'
     // (its layers) outside [min, max] less the slabs beyond its open faces (xMin xMax yMin ...).
     bool container = false;

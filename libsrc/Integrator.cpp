@@ -2,34 +2,43 @@
 
 namespace spindrift {
 
-void advanceIntegratedFields(Scene& s, Scalar dt) {
-    for (const IntegratedField& f : s.integratedFields) {
-        auto& rate = *f.rate;
-        f.computeRate(s, rate);
-        auto& value = *f.value;
-        forEachFluidParticle(s, [&](std::size_t i) { value[i] += dt * rate[i]; });
-    }
+void CarriedAccelerationIntegrator::initialise(Scene& s) {
+    if (keepsHalfStepVelocity_)
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid))
+            fluid->particles.addVector(halfStepField, {false, false, true});
 }
 
-void CarriedAccelerationIntegrator::kickDriftKick(Scene& s, Scalar dt, const Evaluate& evaluate, EvaluationVelocity seen) {
-    startStep(s, evaluate);
-    auto& x = s.fluid.position();
-    auto& v = s.fluid.velocity();
-    const auto& a = s.fluid.acceleration();
+std::vector<Vec3>& CarriedAccelerationIntegrator::halfStepVelocity(ParticleSystem& fluid) {
+    return *fluid.particles.findVector(halfStepField);
+}
+
+void CarriedAccelerationIntegrator::kickDriftKick(Scene& s, const StepServices& core, Scalar dt,
+                                                  const Evaluate& evaluate, EvaluationVelocity seen) {
+    startStep(s, dt, evaluate);
     const Scalar half = Scalar(0.5) * dt;
     const bool predicted = seen == EvaluationVelocity::predicted;
-    if (predicted) halfStepVelocity_.resize(s.fluid.size());
-    forEachFluidParticle(s, [&](std::size_t i) {
-        v[i] += half * a[i]; // v_{n+½}
-        if (predicted) halfStepVelocity_[i] = v[i];
-    });
-    advanceIntegratedFields(s, dt); // ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_{n+½})
-    forEachFluidParticle(s, [&](std::size_t i) {
-        x[i] += dt * advectionVelocity(s, v, i);
-        if (predicted) v[i] += half * a[i]; // v* = v_{n+½} + ½Δt a_n
-    });
+    for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+        auto& x = fluid->particles.position();
+        auto& v = fluid->particles.velocity();
+        const auto& a = fluid->particles.acceleration();
+        forEachParticleOf(*fluid, [&](std::size_t i) { v[i] += half * a[i]; }); // v_{n+½}
+        core.advanceDensity(s, *fluid, dt); // ρ_{n+1} = ρ_n + Δt ρ̇(x_n, v_{n+½})
+        core.drift(s, *fluid, dt, v, x);
+        if (predicted) { // v* = v_{n+½} + ½Δt a_n, v_{n+½} kept
+            auto& kept = halfStepVelocity(*fluid);
+            forEachParticleOf(*fluid, [&](std::size_t i) {
+                kept[i] = v[i];
+                v[i] += half * a[i];
+            });
+        }
+    }
     evaluateAtEnd(s, dt, evaluate);
-    forEachFluidParticle(s, [&](std::size_t i) { v[i] = (predicted ? halfStepVelocity_[i] : v[i]) + half * a[i]; });
+    for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+        auto& v = fluid->particles.velocity();
+        const auto& a = fluid->particles.acceleration();
+        const Vec3* vHalf = predicted ? halfStepVelocity(*fluid).data() : v.data();
+        forEachParticleOf(*fluid, [&](std::size_t i) { v[i] = vHalf[i] + half * a[i]; });
+    }
 }
 
 } // namespace spindrift

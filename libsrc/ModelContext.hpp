@@ -12,13 +12,16 @@ namespace spindrift {
 struct ModelContext {
     const Dictionary& dict;            // the model's sub-dictionary, e.g. sphSchemes.pressure
     const PhysicalParameters& physics;
+    // the scene's constants: the support radius is set before any model is made (the kernel reads
+    // it); the rest (particle mass, sound speed, ...) before initialise()
+    const SceneConstants& constants;
     const Dictionary* solution = nullptr; // sphSolution's sub-dictionary of the same name, if any
     std::filesystem::path caseDirectory = {}; // the case (function objects write below it)
     std::string name = {};             // the entry's name, e.g. "frontPosition" in functions { }
 };
 
-// What a pressure or force model's result is. Every model adds its result to
-// fluid.acceleration(); it declares what that is:
+// What a pressure or force model's result is. Every model adds its result to the fluid
+// system's acceleration(); it declares what that is:
 //   acceleration    a true acceleration (force per mass): every integrator applies it;
 //   velocityChange  a change of velocity Δv over the step, added as Δv/Δt (xsph, dfsph);
 //   positionChange  a change of position Δx over the step, added as Δx/Δt² (pbf, relaxedPbf).
@@ -43,6 +46,7 @@ class ExtraForce;
 class FunctionObject;
 class DensityDiffusion;
 class ShiftingModel;
+class PassiveModel;
 template <> struct KindName<Kernel> { static constexpr const char* value = "kernel"; };
 template <> struct KindName<PressureModel> { static constexpr const char* value = "pressure"; };
 template <> struct KindName<ViscosityModel> { static constexpr const char* value = "viscosity"; };
@@ -52,5 +56,6 @@ template <> struct KindName<ExtraForce> { static constexpr const char* value = "
 template <> struct KindName<FunctionObject> { static constexpr const char* value = "functionObject"; };
 template <> struct KindName<DensityDiffusion> { static constexpr const char* value = "densityDiffusion"; };
 template <> struct KindName<ShiftingModel> { static constexpr const char* value = "shifting"; };
+template <> struct KindName<PassiveModel> { static constexpr const char* value = "passive"; };
 
 } // namespace spindrift

@@ -28,7 +28,7 @@ std::string pluginFileName(const std::string& kind, const std::string& name) {
 
 const std::vector<std::string>& ModelRegistry::kinds() {
     static const std::vector<std::string> k{"kernel",   "pressure",         "viscosity", "integrator", "boundary",
-                                            "force",    "densityDiffusion", "shifting",  "functionObject"};
+                                            "force",    "densityDiffusion", "shifting",  "passive",     "functionObject"};
     return k;
 }
 

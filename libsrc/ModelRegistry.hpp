@@ -18,6 +18,7 @@
 #include "FunctionObject.hpp"
 #include "Integrator.hpp"
 #include "Kernel.hpp"
+#include "PassiveModel.hpp"
 #include "PressureModel.hpp"
 #include "ShiftingModel.hpp"
 #include "ViscosityModel.hpp"
@@ -35,7 +36,7 @@ public:
     // The process-wide registry (libraries it opened stay loaded until exit).
     static ModelRegistry& instance();
 
-    // kernel pressure viscosity integrator boundary force densityDiffusion shifting functionObject
+    // kernel pressure viscosity integrator boundary force densityDiffusion shifting passive functionObject
     static const std::vector<std::string>& kinds();
 
     const std::vector<std::filesystem::path>& searchPath() const { return searchPath_; }
@@ -58,7 +59,7 @@ public:
     // sphSchemes.pressure). Unknown type -> InputError at the `type` entry:
     // "Unknown pressure type 'pcsph'. Valid pressure types are: (...)".
     template <class Base>
-    std::unique_ptr<Base> create(const Dictionary& dict, const PhysicalParameters& physics,
+    std::unique_ptr<Base> create(const Dictionary& dict, const PhysicalParameters& physics, const SceneConstants& constants,
                                  const Dictionary* solution = nullptr,
                                  const std::filesystem::path& caseDirectory = {}, const std::string& name = {}) {
         const std::string kind = KindName<Base>::value;
@@ -66,7 +67,7 @@ public:
         // factoryFor returns only the factory of a library exporting this kind, and a plugin's
         // exported kind is that of its factory's base class (Plugin.hpp): it is a Factory<Base>.
         auto factory = reinterpret_cast<Factory<Base>*>(factoryFor(kind, type, dict));
-        ModelContext context{dict, physics, solution, caseDirectory, name};
+        ModelContext context{dict, physics, constants, solution, caseDirectory, name};
         auto model = factory(context);
         dict.checkAllKeywordsUsed();
         return model;

@@ -163,53 +163,81 @@ void NeighbourSearch::setup(Scalar radius, int dimension, const Vec3& domainMin,
     periodic_ = periodic;
     domainMin_ = domainMin;
     domainMax_ = domainMax;
-    fluidGrid_.setup(radius, dimension, domainMin, domainMax, periodic);
-    walls_.clear();
+    lattice_.setup(radius, dimension, domainMin, domainMax, periodic); // checks the domain's size
+    systems_.clear();
 }
 
-void NeighbourSearch::setWalls(const std::vector<WallSource>& walls) {
-    if (int(walls.size()) + 1 > maxLists)
-        throw std::runtime_error("neighbour search: at most " + std::to_string(maxLists - 1) + " wall systems");
-    walls_.clear();
-    walls_.resize(walls.size());
-    for (std::size_t k = 0; k < walls.size(); ++k) {
-        Wall& w = walls_[k];
-        w.points = walls[k].positions;
-        w.moving = walls[k].moving;
-        w.grid.setup(radius_, dim_, domainMin_, domainMax_, periodic_);
-        w.grid.build(*w.points);
+std::size_t NeighbourSearch::addSystem(const std::vector<Vec3>* positions, bool fixed) {
+    SystemEntry& e = systems_.emplace_back();
+    e.positions = positions;
+    e.fixed = fixed;
+    e.query.system_ = systems_.size() - 1;
+    return systems_.size() - 1;
+}
+
+void NeighbourSearch::addInteraction(std::size_t query, std::size_t source) {
+    if (query >= systems_.size() || source >= systems_.size())
+        throw std::logic_error("NeighbourSearch::addInteraction: no such system");
+    if (interacts(query, source)) return;
+    QueryLists& q = systems_[query].query;
+    if (int(q.sources_.size()) == maxLists)
+        throw std::runtime_error("neighbour search: a system interacts with at most " + std::to_string(maxLists) +
+                                 " systems (its own, its walls and bodies)");
+    // its own list first, the others in the order of their numbers
+    const auto at = source == query ? q.sources_.begin()
+                                    : std::upper_bound(q.sources_.begin() + (q.hasOwn() ? 1 : 0), q.sources_.end(), source);
+    q.lists_.insert(q.lists_.begin() + (at - q.sources_.begin()), NeighbourList{});
+    q.sources_.insert(at, source);
+    q.stamp_ = -1;
+    SystemEntry& s = systems_[source];
+    if (!s.isSource) {
+        s.isSource = true;
+        s.grid.setup(radius_, dim_, domainMin_, domainMax_, periodic_);
+        s.gridBuilt = false;
     }
 }
 
-// Fills the fluid–fluid list and the fluid–wall list of every wall system for n fluid points in
-// one parallel region: gather(list, i, reserve) → count writes point i's neighbours in list 0
-// (fluid) or 1 + k (wall system k) to the array reserve(room) gives it. Each thread takes its
-// block of points (searchRange) in chunks, and then what is left of the others' (claimChunk),
-// writing the rows into its own buffers (kept between calls); then each copies its chunks to
-// their place in the lists, so the lists do not depend on the thread count, the split or who
-// took what. The first thread writes its leading chunks straight into the lists, where they go.
-// A thread's time (gather and copy) and the pairs it gathered update the split of the next
-// build. (Each thread copies its own rows: the passes then find them in its cache.)
-template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, int listCount, Gather&& gather) {
+bool NeighbourSearch::interacts(std::size_t query, std::size_t source) const {
+    return query < systems_.size() && systems_[query].query.find(source) != nullptr;
+}
+
+const NeighbourList& NeighbourSearch::neighbours(std::size_t query, std::size_t source) const {
+    const NeighbourList* list = query < systems_.size() ? systems_[query].query.find(source) : nullptr;
+    if (!list)
+        throw std::logic_error("neighbour search: system " + std::to_string(query) + " was not declared to interact with " +
+                               std::to_string(source));
+    return *list;
+}
+
+// Fills the lists of query system q for its n rows in one parallel region: gather(list, i,
+// reserve) → count writes point i's neighbours in list l to the array reserve(room) gives it.
+// Each thread takes its block of points (searchRange) in chunks, and then what is left of the
+// others' (claimChunk), writing the rows into its own buffers (kept between calls); then each
+// copies its chunks to their place in the lists, so the lists do not depend on the thread
+// count, the split or who took what. The first thread writes its leading chunks straight into
+// the lists, where they go. A thread's time (gather and copy) and the pairs it gathered update
+// the split of the next build. (Each thread copies its own rows: the passes then find them in
+// its cache.)
+template <class Gather>
+void NeighbourSearch::gatherLists(QueryLists& q, std::size_t n, int listCount, Gather&& gather) {
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
 #endif
     NeighbourList* lists[maxLists];
-    lists[0] = &fluidFluid_;
-    for (int l = 1; l < listCount; ++l) lists[l] = &walls_[std::size_t(l - 1)].fluidWall;
-    const bool timed = threads > 1 && threads == int(searchRanges_.size()) - 1 && searchRanges_.back() == n;
+    for (int l = 0; l < listCount; ++l) lists[l] = &q.lists_[std::size_t(l)];
+    const bool timed = threads > 1 && threads == int(q.searchRanges_.size()) - 1 && q.searchRanges_.back() == n;
     std::vector<std::size_t> first(threads + 1);
-    for (int t = 0; t <= threads; ++t) first[t] = timed ? searchRanges_[t] : n * t / threads;
-    if (timed && int(searchSpeeds_.clocks.size()) != threads) searchSpeeds_.clocks.assign(threads, ThreadClock{});
+    for (int t = 0; t <= threads; ++t) first[t] = timed ? q.searchRanges_[t] : n * t / threads;
+    if (timed && int(q.searchSpeeds_.clocks.size()) != threads) q.searchSpeeds_.clocks.assign(threads, QueryLists::ThreadClock{});
     for (int k = 0; k < listCount; ++k) {
         lists[k]->offsets.resize(n + 1);
         lists[k]->offsets[0] = 0;
     }
     if (int(threadBuffers_.size()) < maxLists * threads) threadBuffers_.resize(std::size_t(maxLists * threads));
     if (int(threadChunks_.size()) < threads) threadChunks_.resize(threads);
-    if (int(cursors_.size()) < threads) cursors_.resize(threads);
-    const std::uint32_t region = beginRegion();
+    if (int(q.cursors_.size()) < threads) q.cursors_.resize(threads);
+    const std::uint32_t region = q.beginRegion();
 #pragma omp parallel num_threads(threads)
     {
         int t = 0;
@@ -224,8 +252,8 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, int lis
         std::size_t used[maxLists] = {}, inPlaceUsed[maxLists] = {}, inPlaceEnd = 0;
         for (int k = 0; k < threads; ++k) { // its own block first, then the others'
             const int owner = (t + k) % threads;
-            for (auto [a, b] = claimChunk(owner, first[owner], first[owner + 1], region); a < b;
-                 std::tie(a, b) = claimChunk(owner, first[owner], first[owner + 1], region)) {
+            for (auto [a, b] = q.claimChunk(owner, first[owner], first[owner + 1], region); a < b;
+                 std::tie(a, b) = q.claimChunk(owner, first[owner], first[owner + 1], region)) {
                 GatherChunk chunk{a, b, {}, {}, {}, t == 0 && a == inPlaceEnd};
                 for (int l = 0; l < listCount; ++l) {
                     NeighbourList& list = *lists[l];
@@ -287,66 +315,116 @@ template <class Gather> void NeighbourSearch::gatherLists(std::size_t n, int lis
         busy += omp_get_wtime() - start;
 #endif
         if (timed) {
-            for (const GatherChunk& c : chunks) pairs += double(perParticle * (c.last - c.first));
-            searchSpeeds_.clocks[t].work += pairs;
-            searchSpeeds_.clocks[t].seconds += busy;
+            for (const GatherChunk& c : chunks) pairs += double(QueryLists::perParticle * (c.last - c.first));
+            q.searchSpeeds_.clocks[t].work += pairs;
+            q.searchSpeeds_.clocks[t].seconds += busy;
         }
     }
 }
 
-void NeighbourSearch::buildLists(const std::vector<Vec3>& fluid) {
-    ++builds_;
-    fluidGrid_.build(fluid);
-    for (Wall& w : walls_)
-        if (w.moving) w.grid.build(*w.points);
+void NeighbourSearch::buildGrid(SystemEntry& e, const std::vector<Vec3>& points) {
+    e.grid.build(points);
+    e.gridBuilt = true;
+}
+
+void NeighbourSearch::buildLists(SystemEntry& e, const std::vector<Vec3>& points) {
+    QueryLists& q = e.query;
+    const std::size_t n = std::min(e.owned, points.size());
+    q.particles_ = n;
+    q.stamp_ = ++stamps_;
     const Periodicity* periodic = periodic_.any() ? &periodic_ : nullptr;
-    fluidFluid_.periodic = periodic;
-    for (Wall& w : walls_) w.fluidWall.periodic = periodic;
+    const int listCount = int(q.sources_.size());
+    for (NeighbourList& list : q.lists_) list.periodic = periodic;
+    const auto own = [&](int l) { return q.sources_[std::size_t(l)] == q.system_; };
     if (periodic) {
-        buildNeighbourList(fluid.size(), fluidFluid_, [&](std::size_t i, auto&& push) {
-            fluidGrid_.forEachWithin(fluid[i], fluid, radius_, [&](Index j) {
-                if (j != i) push(j);
+        for (int l = 0; l < listCount; ++l) {
+            const SystemEntry& src = systems_[q.sources_[std::size_t(l)]];
+            const std::vector<Vec3>& xs = own(l) ? points : *src.positions;
+            buildNeighbourList(n, q.lists_[std::size_t(l)], [&](std::size_t i, auto&& push) {
+                src.grid.forEachWithin(points[i], xs, radius_, [&](Index j) {
+                    if (!own(l) || j != i) push(j);
+                });
             });
-        });
-        for (Wall& w : walls_)
-            buildNeighbourList(fluid.size(), w.fluidWall, [&](std::size_t i, auto&& push) {
-                w.grid.forEachWithin(fluid[i], *w.points, radius_, push);
-            });
+        }
     } else {
         const Scalar r2 = radius_ * radius_;
         constexpr Index none = std::numeric_limits<Index>::max();
-        gatherLists(fluid.size(), 1 + int(walls_.size()), [&](int list, std::size_t i, auto&& reserve) {
-            return list == 0 ? fluidGrid_.gatherWithin(fluid[i], r2, Index(i), reserve)
-                             : walls_[std::size_t(list - 1)].grid.gatherWithin(fluid[i], r2, none, reserve);
+        const UniformGrid* grids[maxLists];
+        for (int l = 0; l < listCount; ++l) grids[l] = &systems_[q.sources_[std::size_t(l)]].grid;
+        const bool ownFirst = q.hasOwn();
+        gatherLists(q, n, listCount, [&](int l, std::size_t i, auto&& reserve) {
+            return grids[l]->gatherWithin(points[i], r2, ownFirst && l == 0 ? Index(i) : none, reserve);
         });
     }
-    countWallPairs();
-    balanceWork();
+    q.countOtherPairs();
+    q.balanceWork();
 }
 
-void NeighbourSearch::countWallPairs() {
-    const std::size_t n = fluidFluid_.size();
-    wallPairsBefore_.assign(n + 1, 0);
-    for (const Wall& w : walls_) {
-        const std::uint32_t* offsets = w.fluidWall.offsets.data();
-        std::uint32_t* before = wallPairsBefore_.data();
+void QueryLists::countOtherPairs() {
+    const std::size_t n = particles_;
+    otherPairsBefore_.assign(n + 1, 0);
+    for (std::size_t k = hasOwn() ? 1 : 0; k < lists_.size(); ++k) {
+        const std::uint32_t* offsets = lists_[k].offsets.data();
+        std::uint32_t* before = otherPairsBefore_.data();
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i <= n; ++i) before[i] += offsets[i];
     }
 }
 
-void NeighbourSearch::build(const std::vector<Vec3>& fluid) {
-    builtAhead_ = false;
-    buildLists(fluid);
+void NeighbourSearch::build() {
+    // a query system keeps the lists built ahead at exactly its positions, unless a source other
+    // than itself moves (its particles would be elsewhere now); lists of the last build are made
+    // again (the caller asks for a build when they are stale: listsAt)
+    std::vector<char> keep(systems_.size(), 0);
+    for (std::size_t k = 0; k < systems_.size(); ++k) {
+        const SystemEntry& e = systems_[k];
+        if (!e.query.builtAhead_ || *e.positions != e.query.builtPoints_) continue;
+        bool othersStill = true;
+        for (std::size_t s : e.query.sources_)
+            othersStill = othersStill && (s == k || (systems_[s].fixed && systems_[s].gridBuilt));
+        keep[k] = othersStill;
+    }
+    bool any = false;
+    for (std::size_t k = 0; k < systems_.size(); ++k) {
+        SystemEntry& e = systems_[k];
+        if (e.isSource && !keep[k] && (!e.fixed || !e.gridBuilt)) buildGrid(e, *e.positions);
+    }
+    for (std::size_t k = 0; k < systems_.size(); ++k) {
+        SystemEntry& e = systems_[k];
+        if (e.query.sources_.empty() || keep[k]) continue;
+        buildLists(e, *e.positions);
+        e.query.builtPoints_ = *e.positions;
+        e.query.built_ = true;
+        e.query.builtAhead_ = false;
+        any = true;
+    }
+    if (any) ++builds_;
 }
 
-void NeighbourSearch::buildAhead(const std::vector<Vec3>& predicted) {
-    buildLists(predicted);
-    aheadPoints_ = predicted;
-    builtAhead_ = true;
+void NeighbourSearch::buildAhead(std::size_t query, const std::vector<Vec3>& predicted) {
+    SystemEntry& e = systems_[query];
+    for (std::size_t s : e.query.sources_) {
+        SystemEntry& src = systems_[s];
+        if (s == query) buildGrid(src, predicted);
+        else if (!src.gridBuilt) buildGrid(src, *src.positions);
+    }
+    buildLists(e, predicted);
+    e.query.builtPoints_ = predicted;
+    e.query.built_ = e.query.builtAhead_ = true;
+    ++builds_;
 }
 
-void NeighbourSearch::ThreadSpeeds::update(int threads) {
+bool NeighbourSearch::builtAt(std::size_t query, const std::vector<Vec3>& positions) const {
+    const QueryLists& q = systems_[query].query;
+    return q.builtAhead_ && positions == q.builtPoints_;
+}
+
+bool NeighbourSearch::listsAt(std::size_t query, const std::vector<Vec3>& positions) const {
+    const QueryLists& q = systems_[query].query;
+    return q.sources_.empty() || (q.built_ && positions == q.builtPoints_);
+}
+
+void QueryLists::ThreadSpeeds::update(int threads) {
     if (int(speed.size()) != threads) speed.assign(threads, 1.0);
     if (int(clocks.size()) == threads) {
         // each thread's work per second since the last build, relative to the mean, averaged
@@ -367,7 +445,7 @@ void NeighbourSearch::ThreadSpeeds::update(int threads) {
     clocks.assign(threads, ThreadClock{});
 }
 
-void NeighbourSearch::balanceWork() {
+void QueryLists::balanceWork() {
     int threads = 1;
 #ifdef _OPENMP
     threads = omp_get_max_threads();
@@ -377,7 +455,7 @@ void NeighbourSearch::balanceWork() {
     passSpeeds_.update(threads);
     searchSpeeds_.update(threads);
     if (int(cursors_.size()) != threads) cursors_.resize(threads);
-    const std::size_t n = fluidFluid_.size();
+    const std::size_t n = particles_;
     const auto balance = [&](std::vector<std::size_t>& ranges, PairWork kind, const std::vector<double>& speed) {
         ranges.assign(threads + 1, n);
         ranges[0] = 0;
@@ -396,15 +474,15 @@ void NeighbourSearch::balanceWork() {
             ranges[t] = lo = a;
         }
     };
-    balance(workRanges_, PairWork::FluidAndWall, passSpeeds_.speed);
-    balance(fluidWorkRanges_, PairWork::Fluid, passSpeeds_.speed);
-    balance(searchRanges_, PairWork::FluidAndWall, searchSpeeds_.speed);
+    balance(workRanges_, PairWork::All, passSpeeds_.speed);
+    balance(ownWorkRanges_, PairWork::Own, passSpeeds_.speed);
+    balance(searchRanges_, PairWork::All, searchSpeeds_.speed);
 }
 
 std::vector<Index> NeighbourSearch::sortOrder(const std::vector<Vec3>& points) const {
     std::vector<std::uint64_t> codes(points.size());
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < points.size(); ++i) codes[i] = fluidGrid_.mortonCode(points[i]);
+    for (std::size_t i = 0; i < points.size(); ++i) codes[i] = lattice_.mortonCode(points[i]);
     // a stable LSD radix sort by code, 11 bits a pass, as many passes as the largest code needs
     // (two for a lattice of up to 128 cells a side): a fifth of a stable comparison sort's time
     // at 7k points, a third at 59k (it runs on one thread)
@@ -440,52 +518,74 @@ std::vector<std::uint32_t> permutedOffsets(const NeighbourList& list, const std:
     return offsets;
 }
 
-void NeighbourSearch::permute(const std::vector<Index>& order) {
+void NeighbourSearch::permute(std::size_t system, const std::vector<Index>& order) {
+    SystemEntry& e = systems_[system];
     const std::size_t n = order.size();
-    if (n != fluidFluid_.size()) throw std::logic_error("NeighbourSearch::permute: not the last build's points");
+    if (!e.query.sources_.empty() && n != e.query.particles_)
+        throw std::logic_error("NeighbourSearch::permute: not the last build's points");
     std::vector<Index> newIndexOf(n);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) newIndexOf[order[i]] = Index(i);
+    const auto renumber = [&](Index j) { return newIndexOf[j]; };
     std::vector<Index> scratch;
-    const auto permuteRows = [&](NeighbourList& list, auto map) {
+    // its own rows (and, in its own list, the neighbours' numbers)
+    QueryLists& q = e.query;
+    for (std::size_t k = 0; k < q.lists_.size(); ++k) {
+        NeighbourList& list = q.lists_[k];
         std::vector<std::uint32_t> offsets = permutedOffsets(list, order);
-        permuteRowData(list, order, offsets, list.indices, scratch, map);
+        if (q.sources_[k] == system) permuteRowData(list, order, offsets, list.indices, scratch, renumber);
+        else permuteRowData(list, order, offsets, list.indices, scratch);
         list.offsets.swap(offsets);
         list.indices.swap(scratch);
-    };
-    permuteRows(fluidFluid_, [&](Index j) { return newIndexOf[j]; });
-    for (Wall& w : walls_) {
-        permuteRows(w.fluidWall, std::identity{}); // wall particles keep their numbers
-        w.wallFluidBuild = -1;                     // its rows name fluid particles
     }
-    fluidGrid_.relabel(newIndexOf);
-    if (builtAhead_) permuteVector(aheadPoints_, order);
-    countWallPairs();
-    balanceWork();
+    // the other systems' lists that name its particles
+    for (std::size_t o = 0; o < systems_.size(); ++o) {
+        if (o == system) continue;
+        QueryLists& other = systems_[o].query;
+        for (std::size_t k = 0; k < other.lists_.size(); ++k) {
+            if (other.sources_[k] != system) continue;
+            std::vector<Index>& indices = other.lists_[k].indices;
+            const std::size_t pairs = indices.size();
+#pragma omp parallel for schedule(static)
+            for (std::size_t p = 0; p < pairs; ++p) indices[p] = newIndexOf[indices[p]];
+        }
+    }
+    if (e.isSource && e.gridBuilt) e.grid.relabel(newIndexOf);
+    if (q.built_) permuteVector(q.builtPoints_, order);
+    for (SystemEntry& s : systems_)
+        std::erase_if(s.reverse, [&](const SystemEntry::Reverse& r) { return r.query == system || &s == &e; });
+    e.pointGridVersion = std::numeric_limits<long>::min();
+    if (!q.sources_.empty()) {
+        q.countOtherPairs();
+        q.balanceWork();
+    }
 }
 
-NeighbourList NeighbourSearch::wallWallList(std::size_t k, std::size_t l) const {
+NeighbourList NeighbourSearch::listBetween(std::size_t query, std::size_t source) const {
     NeighbourList list;
     list.periodic = periodic_.any() ? &periodic_ : nullptr;
-    const std::vector<Vec3>& from = *walls_[k].points;
-    const std::vector<Vec3>& to = *walls_[l].points;
-    const UniformGrid& grid = walls_[l].grid;
+    const std::vector<Vec3>& from = *systems_[query].positions;
+    const std::vector<Vec3>& to = *systems_[source].positions;
+    UniformGrid grid;
+    grid.setup(radius_, dim_, domainMin_, domainMax_, periodic_);
+    grid.build(to);
     buildNeighbourList(from.size(), list, [&](std::size_t i, auto&& push) {
         grid.forEachWithin(from[i], to, radius_, [&](Index j) {
-            if (k != l || j != i) push(j);
+            if (query != source || j != i) push(j);
         });
     });
     return list;
 }
 
-const NeighbourList& NeighbourSearch::wallFluidNeighbours(std::size_t k) const {
-    const Wall& w = walls_[k];
-    if (w.wallFluidBuild != builds_) {
-        w.wallFluid = transposeList(w.fluidWall, w.points->size());
-        w.wallFluid.periodic = w.fluidWall.periodic;
-        w.wallFluidBuild = builds_;
-    }
-    return w.wallFluid;
+const NeighbourList& NeighbourSearch::reverseNeighbours(std::size_t query, std::size_t source) const {
+    const SystemEntry& s = systems_[source];
+    const QueryLists& q = systems_[query].query;
+    for (const auto& r : s.reverse)
+        if (r.query == query && r.stamp == q.stamp_) return r.list;
+    std::erase_if(s.reverse, [&](const SystemEntry::Reverse& r) { return r.query == query; });
+    NeighbourList t = transposeList(neighbours(query, source), s.positions->size());
+    t.periodic = q.find(source)->periodic;
+    return s.reverse.emplace_back(SystemEntry::Reverse{query, std::move(t), q.stamp_}).list;
 }
 
 NeighbourList transposeList(const NeighbourList& list, std::size_t columns) {

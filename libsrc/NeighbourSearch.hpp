@@ -15,11 +15,13 @@
 // The grid keeps its points in cell order as a structure of arrays, so the per-step list
 // build scans contiguous memory without branches (gatherWithin); in one parallel region each
 // thread fills its own persistent buffers, one a list, for chunks of its block of particles.
-// The search serves the fluid and every wall system (setWalls): the fluid–fluid list and one
-// fluid–wall list per wall system are rebuilt each step; a fixed wall's grid is built once, a
-// moving wall's at every build, and wall–wall pairs are never searched during the run (only on
-// demand at set-up, wallWallList). A wall's fluid neighbours (the transpose of its list) are
-// made on demand, for boundary models that sum over the fluid around each wall particle.
+// The search serves particle systems (numbered as the scene numbers them, addSystem) and builds,
+// at every build, the lists of exactly the (query, source) pairs of systems declared to interact
+// (addInteraction): a fluid against itself and against every wall and body, a passive system
+// against the fluid it is carried by. A system that is a source has a grid: a fixed wall's is
+// built once, the others' at every build. Pairs never declared (wall against wall) are searched
+// only on demand (listBetween). A source's query neighbours (the transpose of a list) are made
+// on demand, for boundary models that sum over the fluid around each wall particle.
 // sortOrder() gives a permutation along a Z-order (Morton) curve of the cells, used to re-sort
 // the particle arrays every few steps for cache locality.
 // Pair loops run on thread ranges of equal work (workRange), split by the threads' measured
@@ -33,6 +35,8 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <list>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -303,73 +307,51 @@ private:
     std::vector<Scalar> cellX_, cellY_, cellZ_; // positions in sorted_ order (structure of arrays)
 };
 
-class NeighbourSearch {
+class NeighbourSearch;
+
+// A query system's neighbour lists, one per source system it interacts with (its own first,
+// when it is a source of itself), and the balanced parallel schedule of the passes over its
+// particles.
+//
+// Pair loops run on thread ranges of equal work (workRange): thread t of T takes
+// [first, last) = workRange(t, T), with about the same number of neighbours as every other
+// thread (particles near walls have more). PairWork::Own balances the system's own pairs alone,
+// for passes that visit no other system. The split follows the threads' measured speeds: the
+// balanced passes report how long each thread took for its range (recordTime), and each build
+// gives a thread a share of the work in proportion to its speed, averaged over the last steps.
+// On a shared or virtual machine one core is often slower than the other for tens of steps at a
+// time; a thread there gets less work instead of the others waiting for it. Which thread
+// computes a particle never changes a result, so the results stay independent of the split.
+class QueryLists {
 public:
-    // At most this many lists a build (the fluid's own and one per wall system).
-    static constexpr int maxLists = 16;
+    enum class PairWork { All, Own };
 
-    // radius = kernel support h; domain = box the particles are expected to stay in.
-    void setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax,
-               const Periodicity& periodic = {});
-    const Periodicity& periodicity() const { return periodic_; }
-
-    // The wall systems whose particles the fluid interacts with, in order (wall k's list is
-    // wallNeighbours(k)). The search reads the positions through the pointers at every build:
-    // a static wall's grid is built once, here; a moving wall's at every build.
-    struct WallSource {
-        const std::vector<Vec3>* positions;
-        bool moving;
-    };
-    void setWalls(const std::vector<WallSource>& walls);
-    std::size_t wallCount() const { return walls_.size(); }
-
-    // Rebuilds the fluid–fluid list and the fluid–wall list of every wall system for the current
-    // fluid positions (and the grids of moving walls).
-    void build(const std::vector<Vec3>& fluidPoints);
-    // The same, for positions a model predicts the next step to start from (dfsph's check):
-    // the search remembers them, and builtAt() tells whether a later state is exactly there, so
-    // that the step need not search again.
-    void buildAhead(const std::vector<Vec3>& predictedPoints);
-    bool builtAt(const std::vector<Vec3>& fluidPoints) const {
-        return builtAhead_ && fluidPoints == aheadPoints_;
+    std::size_t system() const { return system_; }
+    // The particles the lists have rows for (the query system's own, not its ghosts).
+    std::size_t size() const { return particles_; }
+    // The source systems, in list order, and each one's list.
+    std::size_t sourceCount() const { return sources_.size(); }
+    std::size_t source(std::size_t k) const { return sources_[k]; }
+    const NeighbourList& list(std::size_t k) const { return lists_[k]; }
+    // The list of source system s (null when the query does not interact with it).
+    const NeighbourList* find(std::size_t s) const {
+        for (std::size_t k = 0; k < sources_.size(); ++k)
+            if (sources_[k] == s) return &lists_[k];
+        return nullptr;
     }
+    // The system's neighbours among its own particles (it must be a source of itself).
+    const NeighbourList& own() const { return lists_[0]; }
+    bool hasOwn() const { return !sources_.empty() && sources_[0] == system_; }
+    // How many neighbours particle i has in the other source systems.
+    std::uint32_t otherNeighbourCount(std::size_t i) const { return otherPairsBefore_[i + 1] - otherPairsBefore_[i]; }
+    // Changes whenever the lists are built again or relabelled (for data kept per pair).
+    long stamp() const { return stamp_; }
 
-    // Permutation that orders points along the Z-order curve of the grid cells (stable: the
-    // points of a cell keep their order).
-    std::vector<Index> sortOrder(const std::vector<Vec3>& points) const;
-    // The fluid points of the last build were reordered, new i = old order[i], by a
-    // permutation that keeps the points of a cell in their order (sortOrder's): relabels the
-    // lists and the grid, which are then those a build on the reordered points gives, pair for
-    // pair and in the same order, for less than a build costs.
-    void permute(const std::vector<Index>& order);
-
-    // Wall system k's particles against wall system l's (each particle's neighbours, itself
-    // excluded when k == l), computed on demand, e.g. for wall volumes at set-up.
-    NeighbourList wallWallList(std::size_t k, std::size_t l) const;
-    // Wall system k's fluid neighbours: the transpose of wallNeighbours(k) (each row in
-    // ascending fluid index, so independent of the thread count), computed on first use after
-    // a build. Not to be called inside a parallel region.
-    const NeighbourList& wallFluidNeighbours(std::size_t k) const;
-
-    // Particle ranges of equal pair work for the threads of a parallel region: thread t of T
-    // takes [first, last) = workRange(t, T), with about the same number of fluid and wall
-    // neighbours as every other thread (the fluid near walls has more). From the lists of the
-    // last build; an even split when T differs from the thread count they were made for.
-    // PairWork::Fluid balances the fluid pairs alone, for passes that visit no wall pair.
-    // The split follows the threads' measured speeds: the balanced passes report how long each
-    // thread took for its range (recordTime), and each build gives a thread a share of the work
-    // in proportion to its speed, averaged over the last steps. On a shared or virtual machine
-    // one core is often slower than the other for tens of steps at a time; a thread there gets
-    // less work instead of the others waiting for it. Which thread computes a particle never
-    // changes a result, so the results stay independent of the split.
-    enum class PairWork { FluidAndWall, Fluid };
-    std::pair<std::size_t, std::size_t> workRange(int t, int threads, PairWork work = PairWork::FluidAndWall) const {
-        return rangeOf(work == PairWork::Fluid ? fluidWorkRanges_ : workRanges_, t, threads);
+    std::pair<std::size_t, std::size_t> workRange(int t, int threads, PairWork work = PairWork::All) const {
+        return rangeOf(work == PairWork::Own ? ownWorkRanges_ : workRanges_, t, threads);
     }
-
     // The thread count the ranges were balanced for (the last build's).
     int workRangeThreads() const { return int(workRanges_.size()) - 1; }
-
     // Thread t of a region balanced with workRange took 'seconds' for [first, last). Each
     // thread writes only its own slot; ignored when the thread count is not the build's.
     void recordTime(int t, int threads, PairWork work, std::size_t first, std::size_t last, double seconds) const {
@@ -413,48 +395,18 @@ public:
     std::pair<std::size_t, std::size_t> searchRange(int t, int threads) const {
         return rangeOf(searchRanges_, t, threads);
     }
-    // How many times build() ran (for tests: a search a step saves shows here).
-    long builds() const { return builds_; }
-
-    const NeighbourList& fluidNeighbours() const { return fluidFluid_; }
-    const NeighbourList& wallNeighbours(std::size_t k) const { return walls_[k].fluidWall; }
-    // How many wall particles (of every wall system) fluid particle i has in its support.
-    std::uint32_t wallNeighbourCount(std::size_t i) const { return wallPairsBefore_[i + 1] - wallPairsBefore_[i]; }
-    const UniformGrid& fluidGrid() const { return fluidGrid_; }
-    const UniformGrid& wallGrid(std::size_t k) const { return walls_[k].grid; }
-    Scalar radius() const { return radius_; }
 
 private:
-    Scalar radius_ = 0;
-    int dim_ = 3;
-    Vec3 domainMin_ = Vec3::Zero(), domainMax_ = Vec3::Zero();
-    Periodicity periodic_;
-    UniformGrid fluidGrid_;
-    NeighbourList fluidFluid_;
-    struct Wall {
-        const std::vector<Vec3>* points = nullptr;
-        bool moving = false;
-        UniformGrid grid;
-        NeighbourList fluidWall;               // each fluid particle's neighbours in this wall
-        mutable NeighbourList wallFluid;       // the transpose (on demand)
-        mutable long wallFluidBuild = -1;      // the build it was made for
-    };
-    std::vector<Wall> walls_;
-    std::vector<std::uint32_t> wallPairsBefore_; // Σ_k fluidWall_k.offsets[i]: wall pairs before particle i
-    bool builtAhead_ = false;
-    std::vector<Vec3> aheadPoints_;
-    // kept between steps, no allocation per step: [lists t + l] thread t's rows of list l
-    std::vector<std::vector<Index>> threadBuffers_;
-    struct GatherChunk {          // particles [first, last) gathered by one thread
-        std::size_t first, last;
-        std::size_t start[maxLists], end[maxLists]; // their rows in the thread's buffers
-        std::size_t target[maxLists];               // and in the lists
-        bool inPlace;                 // gathered straight into the lists (the first thread's leading chunks)
-    };
-    std::vector<std::vector<GatherChunk>> threadChunks_; // kept between builds
-    std::vector<GatherChunk*> chunkOrder_;
+    friend class NeighbourSearch;
+    std::size_t system_ = 0, particles_ = 0;
+    std::vector<std::size_t> sources_;
+    std::vector<NeighbourList> lists_;
+    std::vector<std::uint32_t> otherPairsBefore_; // pairs in the other systems' lists before particle i
+    long stamp_ = -1;
+    bool built_ = false, builtAhead_ = false;
+    std::vector<Vec3> builtPoints_; // the system's points at the last build or build ahead
     // threads + 1 bounds: the passes' (workRange) and the list build's (searchRange)
-    std::vector<std::size_t> workRanges_, fluidWorkRanges_, searchRanges_;
+    std::vector<std::size_t> workRanges_, ownWorkRanges_, searchRanges_;
     struct alignas(64) ThreadClock { // one cache line each: the threads write them concurrently
         double work = 0, seconds = 0;
     };
@@ -477,20 +429,18 @@ private:
     static constexpr std::size_t minChunk = 16;
     mutable ThreadSpeeds passSpeeds_; // the balanced passes' (recordTime)
     ThreadSpeeds searchSpeeds_;       // the list build's
-    long builds_ = 0;
     static constexpr std::size_t perParticle = 8; // cost of a particle's own work, in pairs
-    // Work before particle i: its pairs (fluid and wall, or fluid only) plus perParticle each.
+    // Work before particle i: its pairs (all, or its own system's only) plus perParticle each.
     std::size_t pairWork(std::size_t i, PairWork work) const {
-        return std::size_t(fluidFluid_.offsets[i]) + (work == PairWork::FluidAndWall ? wallPairsBefore_[i] : 0) +
-               perParticle * i;
+        const std::size_t own = hasOwn() ? std::size_t(lists_[0].offsets[i]) : 0;
+        return own + (work == PairWork::All ? otherPairsBefore_[i] : 0) + perParticle * i;
     }
     std::pair<std::size_t, std::size_t> rangeOf(const std::vector<std::size_t>& ranges, int t, int threads) const {
-        const std::size_t n = fluidFluid_.size();
+        const std::size_t n = particles_;
         if (threads == int(ranges.size()) - 1 && ranges.back() == n) return {ranges[t], ranges[t + 1]};
         return {n * t / threads, n * (t + 1) / threads};
     }
-    void buildLists(const std::vector<Vec3>& fluid);
-    void countWallPairs();
+    void countOtherPairs();
     void balanceWork(); // over the threads the next passes run on
     // The next chunk of [first, last), the range of thread owner, in region 'region'.
     std::pair<std::size_t, std::size_t> claimChunk(int owner, std::size_t first, std::size_t last,
@@ -507,7 +457,136 @@ private:
         const std::size_t begin = std::size_t(cursor.fetch_add(size, std::memory_order_relaxed) & low);
         return {std::min(begin, last), std::min(begin + size, last)};
     }
-    template <class Gather> void gatherLists(std::size_t n, int listCount, Gather&& gather);
+};
+
+class NeighbourSearch {
+public:
+    using PairWork = QueryLists::PairWork;
+    // At most this many source systems a query system (its own and one per wall or body).
+    static constexpr int maxLists = 16;
+
+    // radius = kernel support h; domain = box the particles are expected to stay in.
+    void setup(Scalar radius, int dimension, const Vec3& domainMin, const Vec3& domainMax,
+               const Periodicity& periodic = {});
+    const Periodicity& periodicity() const { return periodic_; }
+    Scalar radius() const { return radius_; }
+
+    // Registers the next system (its number is the count before): the search reads its
+    // positions through the pointer at every build; a fixed system's grid is built once.
+    std::size_t addSystem(const std::vector<Vec3>* positions, bool fixed);
+    std::size_t systemCount() const { return systems_.size(); }
+    // The system's positions moved outside a build (a fixed wall placed once more, a system
+    // resized): its grid is built again at the next build.
+    void positionsChanged(std::size_t system) { systems_[system].gridBuilt = false; }
+    // The system's particles [owned, size) are ghosts: sources only (rows for [0, owned)).
+    void setOwnedSize(std::size_t system, std::size_t owned) { systems_[system].owned = owned; }
+    // Declares that particles of 'query' need their neighbours among those of 'source' (the
+    // same system: its own neighbours, each particle itself excluded). Lists are built for
+    // the declared pairs only. Idempotent.
+    void addInteraction(std::size_t query, std::size_t source);
+    bool interacts(std::size_t query, std::size_t source) const;
+
+    // Rebuilds the grids of the moving systems and every declared list at the systems' current
+    // positions; a query system whose lists were built ahead at exactly its current positions
+    // (buildAhead), with no other source moving, keeps them.
+    void build();
+    // The lists of 'query' (and its grid) for positions a model predicts the next step to start
+    // from (dfsph's check): the search remembers them, and builtAt() tells whether a later state
+    // is exactly there, so that the step need not search again.
+    void buildAhead(std::size_t query, const std::vector<Vec3>& predicted);
+    bool builtAt(std::size_t query, const std::vector<Vec3>& positions) const;
+    // Whether the lists of 'query' were made at exactly these positions (the last build's, or a
+    // build ahead's; relabelled by permute()), the other sources where they were then (true for
+    // a system that queries nothing).
+    bool listsAt(std::size_t query, const std::vector<Vec3>& positions) const;
+
+    // Permutation that orders points along the Z-order curve of the grid cells (stable: the
+    // points of a cell keep their order).
+    std::vector<Index> sortOrder(const std::vector<Vec3>& points) const;
+    // System k's particles of the last build were reordered, new i = old order[i], by a
+    // permutation that keeps the points of a cell in their order (sortOrder's): relabels its
+    // rows, the lists that name its particles and its grid, which are then those a build on the
+    // reordered points gives, pair for pair and in the same order, for less than a build costs.
+    void permute(std::size_t system, const std::vector<Index>& order);
+
+    // System query's particles against system source's (each particle's neighbours, itself
+    // excluded when query == source), computed on demand, e.g. for wall volumes at set-up.
+    NeighbourList listBetween(std::size_t query, std::size_t source) const;
+    // The query neighbours of each particle of 'source': the transpose of the list (query,
+    // source), each row in ascending query index (so independent of the thread count), computed
+    // on first use after a build. Not to be called inside a parallel region.
+    const NeighbourList& reverseNeighbours(std::size_t query, std::size_t source) const;
+
+    // The lists of query system q (every system has an entry; a system that queries nothing has
+    // no sources).
+    const QueryLists& of(std::size_t query) const { return systems_[query].query; }
+    // The list (query, source); the pair must have been declared.
+    const NeighbourList& neighbours(std::size_t query, std::size_t source) const;
+    // How many times build() ran (for tests: a search a step saves shows here).
+    long builds() const { return builds_; }
+    const UniformGrid& grid(std::size_t system) const { return systems_[system].grid; }
+
+    // f(j, r) for every particle j of 'system' within 'radius' (at most h) of p, at the
+    // system's positions as they are now: a grid of them is built when 'version' differs from
+    // the one it was built for (callers pass a number that changes whenever the particles move,
+    // Scene::stateVersion). For function objects, which sample between the steps' searches.
+    template <class F>
+    void forEachWithin(std::size_t system, const Vec3& p, Scalar radius, long version, F&& f) const {
+        const SystemEntry& e = systems_[system];
+        if (e.pointGridVersion != version) {
+            if (!e.pointGridSetUp) e.pointGrid.setup(radius_, dim_, domainMin_, domainMax_, periodic_);
+            e.pointGridSetUp = true;
+            e.pointGrid.build(*e.positions);
+            e.pointGridVersion = version;
+        }
+        const std::vector<Vec3>& x = *e.positions;
+        e.pointGrid.forEachWithin(p, x, radius, [&](Index j) {
+            Vec3 d = p - x[j];
+            periodic_.minimumImage(d);
+            f(j, d.norm());
+        });
+    }
+
+private:
+    Scalar radius_ = 0;
+    int dim_ = 3;
+    Vec3 domainMin_ = Vec3::Zero(), domainMax_ = Vec3::Zero();
+    Periodicity periodic_;
+    struct SystemEntry {
+        const std::vector<Vec3>* positions = nullptr;
+        std::size_t owned = std::size_t(-1); // rows for [0, owned); -1: every particle
+        bool fixed = false, isSource = false, gridBuilt = false;
+        UniformGrid grid;
+        QueryLists query;
+        struct Reverse {
+            std::size_t query;
+            NeighbourList list;
+            long stamp;
+        };
+        mutable std::list<Reverse> reverse; // transposes made on demand (reverseNeighbours)
+        mutable UniformGrid pointGrid;        // forEachWithin's
+        mutable long pointGridVersion = std::numeric_limits<long>::min();
+        mutable bool pointGridSetUp = false;
+        std::size_t rows() const { return std::min(owned, positions->size()); }
+    };
+    std::vector<SystemEntry> systems_;
+    UniformGrid lattice_; // the domain's lattice (Morton codes of sortOrder); never built
+    long builds_ = 0, stamps_ = 0;
+    // kept between steps, no allocation per step: [lists t + l] thread t's rows of list l
+    std::vector<std::vector<Index>> threadBuffers_;
+    struct GatherChunk {          // particles [first, last) gathered by one thread
+        std::size_t first, last;
+        std::size_t start[maxLists], end[maxLists]; // their rows in the thread's buffers
+        std::size_t target[maxLists];               // and in the lists
+        bool inPlace;                 // gathered straight into the lists (the first thread's leading chunks)
+    };
+    std::vector<std::vector<GatherChunk>> threadChunks_; // kept between builds
+    std::vector<GatherChunk*> chunkOrder_;
+
+    void buildGrid(SystemEntry& e, const std::vector<Vec3>& points);
+    // The lists of query system q with its own positions 'points'.
+    void buildLists(SystemEntry& q, const std::vector<Vec3>& points);
+    template <class Gather> void gatherLists(QueryLists& q, std::size_t n, int listCount, Gather&& gather);
 };
 
 // The transpose of a list of rows over 'columns' points: row c of the result holds every i
@@ -524,37 +603,37 @@ template <class F> [[gnu::noinline]] void forEachInRange(std::size_t first, std:
 }
 } // namespace detail
 
-// Calls f(i) for every fluid particle i in parallel, each thread over its workRange and then
-// over what is left of the others' (claimChunk): for pair loops over the step's lists
-// (deterministic: every i is computed by one thread alone, and f(i) writes only i's results).
+// Calls f(i) for every particle i of a query system in parallel, each thread over its
+// workRange and then over what is left of the others' (claimChunk): for pair loops over the
+// step's lists (deterministic: every i is computed by one thread alone, and f(i) writes only
+// i's results).
 template <class F>
-void forEachParticleBalanced(const NeighbourSearch& search, F&& f,
-                             NeighbourSearch::PairWork work = NeighbourSearch::PairWork::FluidAndWall) {
+void forEachParticleBalanced(const QueryLists& q, F&& f, QueryLists::PairWork work = QueryLists::PairWork::All) {
 #ifdef _OPENMP
-    const std::uint32_t region = search.beginRegion();
+    const std::uint32_t region = q.beginRegion();
 #pragma omp parallel
     {
         const int t = omp_get_thread_num(), threads = omp_get_num_threads();
         const double start = omp_get_wtime();
-        if (threads > 1 && search.sharesChunks(threads)) {
+        if (threads > 1 && q.sharesChunks(threads)) {
             double pairs = 0;
             for (int k = 0; k < threads; ++k) { // its own range first, then the others' tails
                 const int owner = (t + k) % threads;
-                for (auto chunk = search.claimChunk(owner, threads, work, region); chunk.first < chunk.second;
-                     chunk = search.claimChunk(owner, threads, work, region)) {
+                for (auto chunk = q.claimChunk(owner, threads, work, region); chunk.first < chunk.second;
+                     chunk = q.claimChunk(owner, threads, work, region)) {
                     detail::forEachInRange(chunk.first, chunk.second, f);
-                    pairs += search.pairsIn(chunk.first, chunk.second, work);
+                    pairs += q.pairsIn(chunk.first, chunk.second, work);
                 }
             }
-            search.recordWork(t, threads, pairs, omp_get_wtime() - start);
+            q.recordWork(t, threads, pairs, omp_get_wtime() - start);
         } else {
-            const auto [first, last] = search.workRange(t, threads, work);
+            const auto [first, last] = q.workRange(t, threads, work);
             detail::forEachInRange(first, last, f);
-            search.recordTime(t, threads, work, first, last, omp_get_wtime() - start);
+            q.recordTime(t, threads, work, first, last, omp_get_wtime() - start);
         }
     }
 #else
-    detail::forEachInRange(0, search.fluidNeighbours().size(), f);
+    detail::forEachInRange(0, q.size(), f);
     (void)work;
 #endif
 }

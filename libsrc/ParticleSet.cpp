@@ -90,6 +90,11 @@ void ParticleSet::copyDataFrom(const ParticleSet& other) {
         if (!f->options.scratch) parallelCopy(addScalar(f->name, f->options), f->data);
     for (const auto& f : other.vectors_)
         if (!f->options.scratch) parallelCopy(addVector(f->name, f->options), f->data);
+    // a model's working data keeps the particle count (a system whose count changed since)
+    for (auto& f : scalars_)
+        if (f->options.scratch) f->data.resize(id_.size());
+    for (auto& f : vectors_)
+        if (f->options.scratch) f->data.resize(id_.size(), Vec3::Zero());
 }
 
 void ParticleSet::permute(const std::vector<Index>& order) {

@@ -8,15 +8,19 @@
 // formulation's extra stress) in the same call.
 #pragma once
 
-#include "ModelContext.hpp"
+#include "Model.hpp"
+#include "Step.hpp"
 
 namespace spindrift {
 
-class ShiftingModel {
+class ShiftingModel : public Model {
 public:
-    virtual ~ShiftingModel() = default;
-    virtual void initialise(Scene&) {}
-    virtual void computeShift(Scene& scene, Scalar dt) = 0;
+    virtual void computeShift(Scene& scene, ParticleSystem& fluid, const Step& step) = 0;
+    // The forces the accelerations it adds (if any) exerted on the boundaries, as ForceKind::other
+    // (Reactions.hpp); nothing for a model that only shifts. Called right after computeShift when
+    // something wants them.
+    virtual void addReactions(const Scene& scene, const ParticleSystem& fluid, const Step& step,
+                              Reactions& reactions) const = 0;
 };
 
 } // namespace spindrift

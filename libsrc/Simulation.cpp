@@ -2,6 +2,8 @@
 
 #include "Geometry.hpp"
 #include "Log.hpp"
+#include "PairLoop.hpp"
+#include "RigidBody.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -36,16 +38,20 @@ struct DensityError {
     double max = 0, avg = 0;
 };
 
-// Compression error (ρ − ρ0)/ρ0 where positive; the density deficit at a free surface is not
-// an error of the pressure solver.
+// Compression error (ρ − ρ0)/ρ0 where positive, over every fluid system; the density deficit at
+// a free surface is not an error of the pressure solver.
 DensityError densityError(const Scene& s) {
-    const auto& rho = s.fluid.density();
-    const double rho0 = s.physics.rho0;
-    const std::size_t n = rho.size();
-    if (n == 0) return {};
     DensityError e;
-    e.max = parallelMax(n, [&](std::size_t i) { return std::max(0.0, (rho[i] - rho0) / rho0); });
-    e.avg = deterministicSum(n, [&](std::size_t i) { return std::max(0.0, (rho[i] - rho0) / rho0); }) / n;
+    std::size_t count = 0;
+    for (const ParticleSystem* f : s.ofRole(SystemRole::fluid)) {
+        const auto& rho = f->particles.density();
+        const double rho0 = f->rho0;
+        const std::size_t n = f->ownedSize();
+        e.max = std::max(e.max, parallelMax(n, [&](std::size_t i) { return std::max(0.0, (rho[i] - rho0) / rho0); }));
+        e.avg += deterministicSum(n, [&](std::size_t i) { return std::max(0.0, (rho[i] - rho0) / rho0); });
+        count += n;
+    }
+    if (count > 0) e.avg /= double(count);
     return e;
 }
 
@@ -61,6 +67,8 @@ Scalar latticeParticleMass(const KernelTable& kernel, const PhysicalParameters& 
                 sum += kernel.W(Scalar(dx * std::sqrt(double(i * i + j * j + k * k))));
     return Scalar(physics.rho0 / sum);
 }
+
+const StepServices& Simulation::services() const { return *services_; }
 
 Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     : case_(Case::read(caseDir)), forceLargeCase_(forceLargeCase) {
@@ -80,25 +88,32 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
 
     scene_.physics = readPhysicalParameters(case_.fluidProperties);
     const auto& physics = scene_.physics;
-    scene_.constants.supportRadius = physics.supportRadius;
+    // the one support radius: the kernel, its table and the neighbour search are built from it
+    scene_.constants.supportRadius = physics.supportRadiusFactor * physics.particleSpacing;
+    scene_.constants.rho0 = physics.rho0;
+    const SceneConstants& constants = scene_.constants;
 
     const Dictionary& schemes = case_.sphSchemes;
     auto solutionFor = [&](const std::string& kind) { return case_.sphSolution.findDict(kind); };
-    kernel_ = registry.create<Kernel>(schemes.subDict("kernel"), physics);
+    kernel_ = registry.create<Kernel>(schemes.subDict("kernel"), physics, constants);
     scene_.kernel.build(*kernel_);
-    pressure_ = registry.create<PressureModel>(schemes.subDict("pressure"), physics, solutionFor("pressure"));
+    pressure_ = registry.create<PressureModel>(schemes.subDict("pressure"), physics, constants, solutionFor("pressure"));
     if (const Dictionary* v = schemes.findDict("viscosity"))
-        viscosity_ = registry.create<ViscosityModel>(*v, physics, solutionFor("viscosity"));
-    integrator_ = registry.create<Integrator>(schemes.subDict("integrator"), physics);
+        viscosity_ = registry.create<ViscosityModel>(*v, physics, constants, solutionFor("viscosity"));
+    integrator_ = registry.create<Integrator>(schemes.subDict("integrator"), physics, constants);
     if (const Dictionary* forces = schemes.findDict("forces")) {
         for (const auto& name : forces->keywords())
-            forces_.push_back(registry.create<ExtraForce>(forces->subDict(name), physics, solutionFor(name),
+            forces_.push_back(registry.create<ExtraForce>(forces->subDict(name), physics, constants, solutionFor(name),
                                                           case_.dir, name));
     }
     if (const Dictionary* d = schemes.findDict("densityDiffusion"))
-        densityDiffusion_ = registry.create<DensityDiffusion>(*d, physics, solutionFor("densityDiffusion"));
+        densityDiffusion_ = registry.create<DensityDiffusion>(*d, physics, constants, solutionFor("densityDiffusion"));
     if (const Dictionary* d = schemes.findDict("shifting"))
-        shifting_ = registry.create<ShiftingModel>(*d, physics, solutionFor("shifting"));
+        shifting_ = registry.create<ShiftingModel>(*d, physics, constants, solutionFor("shifting"));
+    if (const Dictionary* passive = schemes.findDict("passive"))
+        for (const auto& name : passive->keywords())
+            passive_.push_back(registry.create<PassiveModel>(passive->subDict(name), physics, constants,
+                                                             solutionFor(name), case_.dir, name));
     if (const Dictionary* ns = schemes.findDict("neighbourSearch")) {
         sortEvery_ = ns->getOrDefault<int>("sortEvery", 10);
         if (sortEvery_ < 0)
@@ -111,11 +126,11 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     resolveConstants();
     applyInitialPressure();
 
-    if (scene_.hasWalls()) {
+    if (!scene_.boundaries().empty()) {
         if (!schemes.findDict("boundary"))
             throw InputError(schemes.where(), "constant/geometry has walls, so sphSchemes needs a "
                                               "'boundary { type ...; }' entry (e.g. akinci)", "boundary");
-        boundaryModel_ = registry.create<BoundaryModel>(schemes.subDict("boundary"), physics);
+        boundaryModel_ = registry.create<BoundaryModel>(schemes.subDict("boundary"), physics, constants);
     }
     schemes.markUsed("boundary");
     checkIntegratorApplies(schemes);
@@ -125,16 +140,17 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     case_.sphSolution.markUsed("viscosity");
     case_.sphSolution.checkAllKeywordsUsed();
 
-    scene_.boundaryModel = boundaryModel_.get();
+    services_ = std::make_unique<CoreServices>(
+        CoreServices::Models{boundaryModel_.get(), nullptr, pressure_.get(), shifting_ != nullptr}, periodic_);
     if (boundaryModel_) boundaryModel_->initialise(scene_);
     pressure_->initialise(scene_);
+    if (pressure_->integratesDensity())
+        for (ParticleSystem* f : scene_.ofRole(SystemRole::fluid)) f->particles.addScalar("densityRate", {false, false, true});
     if (densityDiffusion_) {
         // it acts on a density the integrator advances (continuity), never on a summed one
-        const bool integrated = std::any_of(scene_.integratedFields.begin(), scene_.integratedFields.end(),
-                                            [&](const IntegratedField& f) { return f.value == &scene_.fluid.density(); });
-        if (integrated) {
+        if (pressure_->integratesDensity()) {
             densityDiffusion_->initialise(scene_);
-            scene_.densityDiffusion = densityDiffusion_.get();
+            services_->setModels({boundaryModel_.get(), densityDiffusion_.get(), pressure_.get(), shifting_ != nullptr});
         } else {
             // a tutorial's one-word swap of the pressure solver keeps its densityDiffusion entry
             log::warning("densityDiffusion " + schemes.subDict("densityDiffusion").get<std::string>("type") +
@@ -144,24 +160,27 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
         }
     }
     if (shifting_) {
-        scene_.shiftingVelocity = &scene_.fluid.addVector("shiftingVelocity", {false, true});
+        for (ParticleSystem* f : scene_.ofRole(SystemRole::fluid)) f->particles.addVector("shiftingVelocity", {false, true});
         shifting_->initialise(scene_);
     }
     if (viscosity_) viscosity_->initialise(scene_);
     for (auto& f : forces_) f->initialise(scene_);
     integrator_->initialise(scene_);
+    for (auto& p : passive_) p->initialise(scene_); // (adds its systems: after every fluid field exists)
     if (functions) {
         for (const auto& name : functions->keywords())
-            functions_.push_back(registry.create<FunctionObject>(functions->subDict(name), physics, nullptr,
+            functions_.push_back(registry.create<FunctionObject>(functions->subDict(name), physics, constants, nullptr,
                                                                  case_.dir, name));
     }
 
     checkWriteFields();
-    writer_ = std::make_unique<CaseWriter>(case_.dir, time_->timePrecision());
+    for (const ParticleSystem* b : scene_.ofRole(SystemRole::body)) scene_.reactions.want(b->index); // what moves it
+    writer_ = std::make_unique<CaseWriter>(case_.dir, time_->timePrecision(), std::min(0.0, time_->startTime()));
     restarted_ = time_->startFromLatest() && restartFromLatest();
     if (!restarted_) scene_.time = time_->startTime();
     time_->begin(scene_.time, lastDeltaT_);
     if (restarted_) integrator_->restarted(scene_);
+    for (auto& f : functions_) f->require(scene_);
     for (auto& f : functions_) f->start(scene_, scene_.time);
     if (pressure_->isIterative())
         solverPerformance_ = std::make_unique<PostProcessingFile>(
@@ -271,7 +290,7 @@ double latticeNeighbours(Scalar h, Scalar dx, int dim) {
 // 140 MB estimated, 133 MB measured with wcsph; 263 MB and 245 MB with pcisph.
 ParticleBytes bytesPerParticle(const PhysicalParameters& physics, bool iterativePressure) {
     const double S = sizeof(Scalar);
-    const double pairs = latticeNeighbours(physics.supportRadius, physics.particleSpacing, physics.dimension);
+    const double pairs = latticeNeighbours(physics.supportRadiusFactor * physics.particleSpacing, physics.particleSpacing, physics.dimension);
     ParticleBytes b;
     b.fluid = iterativePressure ? 80 + 78 * S + pairs * (7 + 3 * S) : 140 + 39 * S + pairs * 13;
     b.wall = iterativePressure ? 10 + 25 * S : 8 + 10 * S;
@@ -372,7 +391,12 @@ void Simulation::buildParticles() {
     const auto& physics = scene_.physics;
     const int dim = physics.dimension;
     const SampledGeometry g = sampleGeometry(case_.geometry, physics.particleSpacing, dim, physics.gravity);
-    auto& fluid = scene_.fluid;
+    // the fluid blocks make one fluid system; each wall entry a wall system of its own
+    scene_.systems.clear();
+    ParticleSystem& fluidSystem = scene_.addSystem("fluid", SystemRole::fluid);
+    fluid_ = &fluidSystem;
+    fluidSystem.rho0 = physics.rho0;
+    auto& fluid = fluidSystem.particles;
     fluid.resize(g.fluidPositions.size());
     fluid.setParticleMass(latticeParticleMass(scene_.kernel, physics));
     for (std::size_t i = 0; i < g.fluidPositions.size(); ++i) {
@@ -388,14 +412,10 @@ void Simulation::buildParticles() {
         if (dim == 2) lo[2] = hi[2] = 0;
         entries.push_back({"fluid block '" + b.name + "'", b.where, b.name, lo, hi});
     }
-    // Each wall entry is a wall system; the vector is not resized after this (the search keeps
-    // pointers to the walls' positions).
-    scene_.walls.clear();
-    scene_.walls.reserve(g.walls.size());
     Vec3 sweptLo = g.boundsMin, sweptHi = g.boundsMax; // moving walls: where they go during the run
     const double startTime = time_->startTime(), endTime = time_->endTime();
     for (const SampledWall& sampled : g.walls) {
-        WallSystem& w = scene_.walls.emplace_back(sampled.name);
+        ParticleSystem& w = scene_.addSystem(sampled.name, sampled.body ? SystemRole::body : SystemRole::wall);
         auto& set = w.particles;
         set.resize(sampled.positions.size());
         Vec3 wallLo = Vec3::Constant(std::numeric_limits<Scalar>::max()), wallHi = -wallLo;
@@ -406,8 +426,20 @@ void Simulation::buildParticles() {
             wallLo = wallLo.cwiseMin(sampled.positions[i]);
             wallHi = wallHi.cwiseMax(sampled.positions[i]);
         }
+        if (sampled.body) {
+            w.body = std::make_unique<RigidBody>(
+                RigidBody::read(*sampled.body, sampled.min, sampled.max, physics.dimension));
+            sampled.body->checkAllKeywordsUsed();
+            // where it may go: anywhere in the sampled domain (a body moves with the fluid)
+            std::ostringstream m;
+            m << std::setprecision(4) << "Body '" << sampled.name << "': mass " << w.body->mass()
+              << (physics.dimension == 2 ? " kg/m" : " kg") << ", centre of mass (" << w.body->state().position.transpose()
+              << "), " << w.size() << " particles";
+            log::info(m.str());
+        }
         if (!sampled.motion) {
-            entries.push_back({"wall '" + sampled.name + "'", sampled.where, sampled.name, wallLo, wallHi});
+            entries.push_back({std::string(sampled.body ? "body '" : "wall '") + sampled.name + "'", sampled.where, sampled.name,
+                               wallLo, wallHi});
             continue;
         }
         w.motion = Motion::read(*sampled.motion, dim, startTime, endTime);
@@ -453,28 +485,31 @@ void Simulation::buildParticles() {
     // Neighbour grid over the sampled bounds (and the moving walls' sweep) with a generous
     // margin (particles beyond it are clamped into border cells: correct, only slower).
     const Vec3 extent = sweptHi - sweptLo;
-    const Scalar margin = 2 * physics.supportRadius;
+    const Scalar h = scene_.constants.supportRadius;
+    const Scalar margin = 2 * h;
     domainMin_ = sweptLo - Vec3::Constant(margin) - Scalar(0.25) * extent;
     domainMax_ = sweptHi + Vec3::Constant(margin) + Scalar(0.25) * extent;
     periodic_ = g.periodic;
     if (dim == 2) domainMin_[2] = domainMax_[2] = 0;
     Vec3 fluidCentre = Vec3::Zero();
     for (const Vec3& x : g.fluidPositions) fluidCentre += x / Scalar(g.fluidPositions.size());
-    checkDomainSize(entries, domainMin_, domainMax_, periodic_, physics.supportRadius, dim, fluidCentre);
+    checkDomainSize(entries, domainMin_, domainMax_, periodic_, h, dim, fluidCentre);
     // A particle beyond one more extent (and 10 h) from everything sampled has blown up.
-    const Vec3 reach = extent.cwiseMax(Vec3::Constant(10 * physics.supportRadius));
+    const Vec3 reach = extent.cwiseMax(Vec3::Constant(10 * h));
     blowUpMin_ = sweptLo - reach;
     blowUpMax_ = sweptHi + reach;
     // ... or moves 100 times faster than a free fall across the domain could make it
     blowUpSpeedFloor_ = 100 * std::sqrt(2 * physics.gravity.norm() * extent.norm());
-    scene_.search.setup(scene_.constants.supportRadius, dim, domainMin_, domainMax_, periodic_);
-    std::vector<NeighbourSearch::WallSource> sources;
-    for (WallSystem& w : scene_.walls) {
-        w.particles.permute(scene_.search.sortOrder(w.particles.position())); // cache order
-        if (w.moving()) w.initialPosition = w.particles.position();
-        sources.push_back({&w.particles.position(), w.moving()});
+    scene_.search.setup(h, physics.dimension, domainMin_, domainMax_, periodic_);
+    for (ParticleSystem* w : scene_.boundaries()) {
+        w->particles.permute(scene_.search.sortOrder(w->particles.position())); // cache order
+        if (w->motion) w->initialPosition = w->particles.position();
+        if (w->body) {
+            w->body->attach(*w); // its particles' positions in the body frame
+            w->body->place(*w);
+        }
     }
-    scene_.search.setWalls(sources);
+    declareInteractions();
     // the fluid's initial extent along gravity, for the equation of state's default sound speed
     const Scalar gNorm = physics.gravity.norm();
     if (gNorm > 0 && fluid.size() > 0) {
@@ -488,9 +523,13 @@ void Simulation::buildParticles() {
     }
 }
 
+void Simulation::declareInteractions() {
+    for (const auto& p : scene_.systems) scene_.registerWithSearch(*p);
+}
+
 void Simulation::resolveConstants() {
     SceneConstants& c = scene_.constants;
-    c.particleMass = scene_.fluid.particleMass();
+    c.particleMass = fluid_->particles.particleMass();
     c.rho0 = scene_.physics.rho0;
     c.soundSpeed = pressure_->soundSpeed(c, scene_.physics);
     c.eosExponent = pressure_->eosExponent();
@@ -499,7 +538,7 @@ void Simulation::resolveConstants() {
 }
 
 void Simulation::applyInitialPressure() {
-    auto& fluid = scene_.fluid;
+    auto& fluid = fluid_->particles;
     const Scalar rhoG = scene_.physics.rho0 * scene_.physics.gravity.norm();
     for (std::size_t i = 0; i < fluid.size(); ++i) {
         const Scalar p = rhoG * initialDepths_[i];
@@ -529,16 +568,61 @@ void Simulation::checkIntegratorApplies(const Dictionary& schemes) const {
             check("force", forces->subDict(forces->keywords()[k]).get<std::string>("type"), forces_[k]->result());
 }
 
+void Simulation::advanceBodies(double dt) {
+    const auto bodies = scene_.ofRole(SystemRole::body);
+    if (bodies.empty()) return;
+    const RigidBody::V3 g = scene_.physics.gravity.cast<double>();
+    for (ParticleSystem* b : bodies) {
+        RigidBody& body = *b->body;
+        const Wrench w = scene_.reactions.total(b->index);
+        body.advance(dt, w.force, w.momentAbout(body.state().position), g);
+        body.place(*b);
+        resolveContacts(*b);
+    }
+}
+
+void Simulation::resolveContacts(ParticleSystem& b) {
+    using V3 = RigidBody::V3;
+    RigidBody& body = *b.body;
+    const double d0 = scene_.physics.particleSpacing; // particles of two solids at rest sit Δx apart
+    const QueryLists& q = scene_.listsOf(b);
+    const auto& xb = b.particles.position();
+    // the contact with every wall and other body at once: the deepest penetration, the normal
+    // (penetration-weighted), the contact point and the other side's velocity there
+    double deepest = 0, weight = 0;
+    V3 normal = V3::Zero(), point = V3::Zero(), otherVelocity = V3::Zero();
+    for (std::size_t k = 0; k < q.sourceCount(); ++k) {
+        const ParticleSystem& o = scene_.system(q.source(k));
+        const auto& xo = o.particles.position();
+        const auto& vo = o.particles.velocity();
+        for (std::size_t i = 0; i < q.size(); ++i)
+            forEachNeighbour(q.list(k), xb, xo, i, [&](Index j, const Vec3& r, Scalar r2) {
+                const double d = std::sqrt(double(r2));
+                if (!(d < d0) || !(d > 0)) return;
+                const double depth = d0 - d;
+                deepest = std::max(deepest, depth);
+                weight += depth;
+                normal += depth * (r.cast<double>() / d);
+                point += depth * xb[i].cast<double>();
+                otherVelocity += depth * vo[j].cast<double>();
+            });
+    }
+    if (!(weight > 0) || !(normal.norm() > 0)) return;
+    normal.normalize();
+    point /= weight;
+    otherVelocity /= weight;
+    body.resolveContact(normal, deepest, point, otherVelocity);
+    body.place(b);
+}
+
 void Simulation::placeMovingWalls(double time) {
-    for (WallSystem& w : scene_.walls) {
-        if (!w.moving()) continue;
-        const Vec3 d = w.motion->displacement(time), v = w.motion->velocity(time), a = w.motion->acceleration(time);
-        auto& x = w.particles.position();
-        const std::size_t n = x.size();
-#pragma omp parallel for schedule(static)
-        for (std::size_t b = 0; b < n; ++b) x[b] = w.initialPosition[b] + d;
-        std::fill(w.particles.velocity().begin(), w.particles.velocity().end(), v);
-        std::fill(w.particles.acceleration().begin(), w.particles.acceleration().end(), a);
+    for (ParticleSystem* w : scene_.ofRole(SystemRole::wall)) {
+        if (!w->motion) continue;
+        const Vec3 d = w->motion->displacement(time), v = w->motion->velocity(time), a = w->motion->acceleration(time);
+        auto& x = w->particles.position();
+        forEachIndex(x.size(), [&](std::size_t b) { x[b] = w->initialPosition[b] + d; });
+        std::fill(w->particles.velocity().begin(), w->particles.velocity().end(), v);
+        std::fill(w->particles.acceleration().begin(), w->particles.acceleration().end(), a);
     }
 }
 
@@ -619,8 +703,7 @@ void Simulation::checkWriteFields() const {
         for (const auto& f : set.scalarFields()) known.push_back(f->name);
         for (const auto& f : set.vectorFields()) known.push_back(f->name);
     };
-    add(scene_.fluid);
-    for (const auto& w : scene_.walls) add(w.particles);
+    for (const auto& p : scene_.systems) add(p->particles);
     for (const auto& name : writeFields_)
         if (std::find(known.begin(), known.end(), name) == known.end()) {
             std::sort(known.begin(), known.end());
@@ -645,6 +728,126 @@ std::string Simulation::timeFile() const {
         s << "blowUpDeltaTCap " << deltaTCap_ << ";\n"
           << "blowUpHoldSteps " << deltaTHoldSteps_ << ";\n";
     return s.str();
+}
+
+namespace {
+// The shortest text that reads back as x in the build's precision (0.01, not 0.0099999997764825821
+// for a float).
+std::string shortest(Scalar x) {
+    for (int digits = 6;; ++digits) {
+        std::ostringstream s;
+        s << std::setprecision(digits) << double(x);
+        if (digits >= 17 || Scalar(std::strtod(s.str().c_str(), nullptr)) == x) return s.str();
+    }
+}
+} // namespace
+
+std::string Simulation::particlesFile() const {
+    const auto& physics = scene_.physics;
+    std::ostringstream s;
+    s << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+      << "    class       dictionary;\n    object      particles;\n}\n\n"
+      << "// what 'startFrom latestTime' from this time must match (the particles continue)\n"
+      << "dimension       " << physics.dimension << ";\n"
+      << "particleSpacing " << shortest(physics.particleSpacing) << ";\n"
+      << "supportRadius   " << shortest(physics.supportRadiusFactor) << ";\n"
+      << "rho0            " << shortest(physics.rho0) << ";\n"
+      << "kernel          " << case_.sphSchemes.subDict("kernel").get<std::string>("type") << ";\n"
+      << "particleMass    " << shortest(fluid_->particles.particleMass()) << ";\n"
+      << "fluid           (" << fluid_->name() << ");\n";
+    const auto list = [&](const char* keyword, const std::vector<const ParticleSystem*>& systems) {
+        s << keyword << "(";
+        for (std::size_t k = 0; k < systems.size(); ++k) s << (k ? " " : "") << systems[k]->name();
+        s << ");\n";
+    };
+    list("walls           ", scene_.ofRole(SystemRole::wall));
+    list("bodies          ", scene_.ofRole(SystemRole::body));
+    list("passive         ", scene_.ofRole(SystemRole::passive));
+    return s.str();
+}
+
+namespace {
+// The two values of a setting a restart refuses, in words that tell them apart.
+std::string twoValues(double now, double then) {
+    for (int digits = 6;; ++digits) {
+        std::ostringstream a, b;
+        a << std::setprecision(digits) << now;
+        b << std::setprecision(digits) << then;
+        if (a.str() != b.str() || digits == 17) return a.str() + " is not the " + b.str();
+    }
+}
+
+bool sameValue(double a, double b, double tolerance) {
+    return std::abs(a - b) <= tolerance * std::max(std::abs(a), std::abs(b));
+}
+} // namespace
+
+void Simulation::checkRestartMatches(const fs::path& dir, const ParticleSet& saved) const {
+    // (relative tolerance: a restart by a build of the other precision reads the same values)
+    constexpr double tolerance = 1e-6;
+    const std::string time = dir.filename().string();
+    const auto& physics = scene_.physics;
+    const Dictionary& fp = case_.fluidProperties;
+    const fs::path file = dir / "uniform/particles";
+    const std::string anew = ", or 'startFrom startTime;' to start anew";
+    // "<what> of time T (<file>): a restart continues its particles; use <fix>, or ..."
+    const auto refuse = [&](const SourceLocation& where, const std::string& keyword, const std::string& what,
+                            const std::string& fix, const fs::path& source) {
+        throw InputError(where, what + " of time " + time + " (" + source.string() +
+                                    "): a restart continues its particles; use " + fix + anew, keyword);
+    };
+    const Scalar mass = fluid_->particles.particleMass();
+    if (!fs::exists(file)) {
+        // a time written before uniform/particles was: the mass its fluid.vtp holds (it changes
+        // with the spacing, the dimension, rho0, the kernel and its support)
+        if (!sameValue(saved.particleMass(), mass, tolerance))
+            refuse(fp.where(), "", "the particle mass " + twoValues(mass, saved.particleMass()),
+                   "the particleSpacing, dimension, rho0 and kernel it was run with", dir / "fluid.vtp");
+        return;
+    }
+    const Dictionary then = Dictionary::fromFile(file);
+    const auto at = [](const Dictionary& d, const std::string& keyword) {
+        return d.found(keyword) ? d.locationOf(keyword) : d.where();
+    };
+    if (const int was = then.get<int>("dimension"); was != physics.dimension)
+        refuse(at(fp, "dimension"), "dimension",
+               "dimension " + std::to_string(physics.dimension) + " is not the " + std::to_string(was),
+               "dimension " + std::to_string(was), file);
+    const auto check = [&](const std::string& keyword, double now) {
+        const double was = then.get<double>(keyword);
+        if (!sameValue(now, was, tolerance))
+            refuse(at(fp, keyword), keyword, keyword + " " + twoValues(now, was), keyword + " " + shortest(Scalar(was)),
+                   file);
+    };
+    check("particleSpacing", physics.particleSpacing);
+    check("supportRadius", physics.supportRadiusFactor);
+    check("rho0", physics.rho0);
+    const Dictionary& kernel = case_.sphSchemes.subDict("kernel");
+    const std::string kernelNow = kernel.get<std::string>("type"), kernelThen = then.get<std::string>("kernel");
+    if (kernelNow != kernelThen)
+        refuse(at(kernel, "type"), "type",
+               "kernel " + kernelNow + " is not the " + kernelThen,
+               "kernel { type " + kernelThen + "; } (the particle mass is the kernel's lattice sum)", file);
+    const double massThen = then.get<double>("particleMass");
+    if (!sameValue(mass, massThen, tolerance))
+        refuse(fp.where(), "", "the particle mass " + twoValues(mass, massThen),
+               "the fluidProperties and kernel it was run with", file);
+    const auto fluids = then.get<std::vector<std::string>>("fluid");
+    if (fluids != std::vector<std::string>{fluid_->name()}) {
+        std::string list;
+        for (const auto& f : fluids) list += (list.empty() ? "" : " ") + f;
+        refuse(case_.geometry.where(), "", "the fluid systems (" + fluid_->name() + ") are not the (" + list + ")",
+               "the fluids it was run with", file);
+    }
+    // walls are sampled anew from constant/geometry: a change is the user's (a gate taken out)
+    std::vector<std::string> wallsNow, wallsThen = then.get<std::vector<std::string>>("walls");
+    for (const ParticleSystem* w : scene_.ofRole(SystemRole::wall)) wallsNow.push_back(w->name());
+    for (const auto& w : wallsThen)
+        if (std::find(wallsNow.begin(), wallsNow.end(), w) == wallsNow.end())
+            log::info("Wall '" + w + "' of time " + time + " is not in constant/geometry: the restart runs without it");
+    for (const auto& w : wallsNow)
+        if (std::find(wallsThen.begin(), wallsThen.end(), w) == wallsThen.end())
+            log::info("Wall '" + w + "' is new since time " + time + " (it is not in " + file.string() + ")");
 }
 
 namespace {
@@ -719,7 +922,9 @@ bool Simulation::restartFromLatest() {
                          "no time directory to restart from (" + firstProblem +
                              "); use 'startFrom startTime;' or repair the time",
                          "startFrom");
-    auto& fluid = scene_.fluid;
+    checkRestartMatches(case_.dir / name, *saved);
+    restartedFrom_ = name;
+    auto& fluid = fluid_->particles;
     fluid.resize(saved->size());
     fluid.id() = saved->id();
     for (const auto& f : saved->scalarFields())
@@ -727,6 +932,7 @@ bool Simulation::restartFromLatest() {
     for (const auto& f : saved->vectorFields())
         if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
     fluid.position() = saved->position();
+    restorePassiveSystems(case_.dir / name);
     // exact time, step index and last Δt
     scene_.time = timeDict->get<double>("value");
     scene_.step = timeDict->get<long>("index");
@@ -735,10 +941,58 @@ bool Simulation::restartFromLatest() {
     deltaTCap_ = timeDict->getOrDefault<double>("blowUpDeltaTCap", std::numeric_limits<double>::infinity());
     deltaTHoldSteps_ = timeDict->getOrDefault<int>("blowUpHoldSteps", 0);
     if (!(deltaTCap_ > 0)) deltaTCap_ = std::numeric_limits<double>::infinity();
-    staticWallsWritten_ = true; // fixed walls were written at the first time
+    readBodies(case_.dir / name);
     log::info("Restarting from time " + name + " (step " + std::to_string(scene_.step) + ", " +
               std::to_string(saved->size()) + " particles)");
     return true;
+}
+
+void Simulation::restorePassiveSystems(const fs::path& timeDir) {
+    for (ParticleSystem* p : scene_.ofRole(SystemRole::passive)) {
+        const fs::path file = timeDir / (p->name() + ".vtp");
+        if (!fs::exists(file)) {
+            log::info("Passive system '" + p->name() + "' is new since time " + timeDir.filename().string() +
+                      " (no " + file.filename().string() + "): it starts as its model seeds it");
+            continue;
+        }
+        const ParticleSet saved = readVtp(file, p->name());
+        auto& set = p->particles;
+        set.resize(saved.size());
+        set.id() = saved.id();
+        for (const auto& f : saved.scalarFields())
+            if (auto* mine = set.findScalar(f->name)) *mine = f->data;
+        for (const auto& f : saved.vectorFields())
+            if (auto* mine = set.findVector(f->name)) *mine = f->data;
+        set.position() = saved.position();
+        scene_.search.positionsChanged(p->index);
+    }
+}
+
+std::string Simulation::bodiesFile() const {
+    const auto bodies = scene_.ofRole(SystemRole::body);
+    if (bodies.empty()) return {};
+    std::ostringstream s;
+    s << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
+      << "    object      bodies;\n}\n\n";
+    for (const ParticleSystem* b : bodies) s << b->name() << "\n{\n" << b->body->stateText() << "}\n";
+    return s.str();
+}
+
+void Simulation::readBodies(const fs::path& timeDir) {
+    const auto bodies = scene_.ofRole(SystemRole::body);
+    if (bodies.empty()) return;
+    const fs::path file = timeDir / "uniform/bodies";
+    if (!fs::exists(file))
+        throw InputError({file.string(), 0, 0}, "the case has bodies but time " + timeDir.filename().string() +
+                                                    " holds no uniform/bodies (their state): it was written by "
+                                                    "another case; use 'startFrom startTime;'");
+    const Dictionary d = Dictionary::fromFile(file);
+    for (ParticleSystem* b : bodies) {
+        if (!d.findDict(b->name()))
+            throw InputError(d.where(), "uniform/bodies has no state of body '" + b->name() + "'", b->name());
+        b->body->readState(d.subDict(b->name()));
+        b->body->place(*b);
+    }
 }
 
 std::string Simulation::schemesSummary() const {
@@ -754,82 +1008,138 @@ std::string Simulation::schemesSummary() const {
     if (shifting_) s << ", shifting " << type("shifting");
     if (const Dictionary* forces = case_.sphSchemes.findDict("forces"))
         for (const auto& name : forces->keywords()) s << ", force " << forces->subDict(name).get<std::string>("type");
+    if (const Dictionary* passive = case_.sphSchemes.findDict("passive"))
+        for (const auto& name : passive->keywords())
+            s << ", passive " << name << " (" << passive->subDict(name).get<std::string>("type") << ")";
     return s.str();
+}
+
+void Simulation::updateLists(double time) {
+    auto& s = scene_;
+    placeMovingWalls(time);
+    // lists at exactly the systems' positions (the last build, a re-sort of it, or a search a model
+    // made ahead: dfsph's check) are kept, unless a boundary has moved since they were made
+    bool stale = s.anyMovingBoundary() && !(listsBoundaryTime_ == time);
+    for (const auto& q : s.systems) stale = stale || !s.search.listsAt(q->index, q->particles.position());
+    if (stale) s.search.build();
+    listsBoundaryTime_ = time;
 }
 
 void Simulation::evaluate(double time, Scalar dt) {
     auto& s = scene_;
-    placeMovingWalls(time);
-    // a search a model made ahead at exactly these positions (dfsph's check) is kept, unless a
-    // wall has moved since
-    if (!s.search.builtAt(s.fluid.position()) || s.anyMovingWall()) s.search.build(s.fluid.position());
-    pressure_->computeDensity(s);
-    if (boundaryModel_) boundaryModel_->update(s);
-    auto& a = s.fluid.acceleration();
+    const Step step{time, dt, *services_};
+    updateLists(time);
+    Reactions& reactions = s.reactions;
+    const bool wantReactions = reactions.anyWanted();
+    if (wantReactions) reactions.clear();
+    const auto fluids = s.ofRole(SystemRole::fluid);
+    for (ParticleSystem* f : fluids) pressure_->computeDensity(s, *f, step);
+    if (boundaryModel_) boundaryModel_->update(s, step);
     const Vec3 g = s.physics.gravity;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < a.size(); ++i) a[i] = g;
-    if (viscosity_) viscosity_->addAcceleration(s, dt);
-    for (auto& f : forces_) f->addAcceleration(s, dt);
-    pressure_->addPressureAcceleration(s, dt);
-    if (shifting_) shifting_->computeShift(s, dt);
+    for (ParticleSystem* f : fluids) {
+        auto& a = f->particles.acceleration();
+        forEachIndex(a.size(), [&](std::size_t i) { a[i] = g; });
+        if (viscosity_) viscosity_->addAcceleration(s, *f, step);
+        if (viscosity_ && wantReactions) viscosity_->addReactions(s, *f, step, reactions);
+        for (auto& force : forces_) {
+            force->addAcceleration(s, *f, step);
+            if (wantReactions) force->addReactions(s, *f, step, reactions);
+        }
+        pressure_->addPressureAcceleration(s, *f, step);
+        if (wantReactions) pressure_->addReactions(s, *f, step, reactions);
+        if (shifting_) shifting_->computeShift(s, *f, step);
+        if (shifting_ && wantReactions) shifting_->addReactions(s, *f, step, reactions);
+    }
 }
 
 double Simulation::stableDeltaT() const {
     const auto& s = scene_;
-    const double h = s.physics.supportRadius;
-    const auto& v = s.fluid.velocity();
-    const auto& a = s.fluid.acceleration();
-    double vMax = std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); }));
-    const double aMax = std::sqrt(parallelMax(a.size(), [&](std::size_t i) { return a[i].squaredNorm(); }));
-    for (const auto& w : s.walls) // a moving wall's speed over the step (it is uniform over the wall)
-        if (w.moving()) vMax = std::max(vMax, double(w.motion->velocity(s.time).norm()));
+    const double h = s.constants.supportRadius;
+    double vMax = 0, aMax = 0;
+    for (const ParticleSystem* f : s.ofRole(SystemRole::fluid)) {
+        const auto& v = f->particles.velocity();
+        const auto& a = f->particles.acceleration();
+        vMax = std::max(vMax, std::sqrt(parallelMax(f->ownedSize(), [&](std::size_t i) { return v[i].squaredNorm(); })));
+        aMax = std::max(aMax, std::sqrt(parallelMax(f->ownedSize(), [&](std::size_t i) { return a[i].squaredNorm(); })));
+    }
+    for (const ParticleSystem* w : s.boundaries()) // a moving wall's speed over the step (it is uniform over the wall)
+        if (w->motion) vMax = std::max(vMax, double(w->motion->velocity(s.time).norm()));
     const double c0 = s.constants.soundSpeed;
     double dt = std::numeric_limits<double>::infinity();
     if (c0 + vMax > 0) dt = time_->maxCo() * h / (c0 + vMax);
     if (aMax > 0) dt = std::min(dt, 0.25 * std::sqrt(h / aMax));
-    double nu = viscosity_ ? viscosity_->timeStepViscosity() : 0.0;
-    for (const auto& f : forces_) nu = std::max(nu, double(f->timeStepViscosity()));
-    // Morris et al. (1997): 0.125 h_s²/ν on the smoothing length h_s = h/2 (on the support
-    // radius itself the limit is 4 times too large: Poiseuille flow blows up)
-    if (nu > 0) dt = std::min(dt, 0.125 * 0.25 * h * h / nu);
+    for (const ParticleSystem* b : s.ofRole(SystemRole::body)) { // a body's fastest particle
+        const auto& v = b->particles.velocity();
+        vMax = std::max(vMax, std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); })));
+    }
+    // the limits the models declare (viscosity's, ...)
+    for (const Model* m : models()) dt = std::min(dt, m->maxTimeStep(s));
     return dt;
 }
 
 namespace {
-// A moving wall whose positions are not finite or beyond the box [lo, hi] at the scene's time (its
-// motion, checked at set-up, should never put it there): "" when none.
-std::string movingWallBlowUp(const Scene& s, const Vec3& lo, const Vec3& hi) {
-    for (const WallSystem& w : s.walls) {
-        if (!w.moving()) continue;
-        const auto& x = w.particles.position();
-        int bad = 0;
-#pragma omp parallel for schedule(static) reduction(| : bad)
-        for (std::size_t b = 0; b < x.size(); ++b)
-            for (int d = 0; d < s.physics.dimension; ++d) bad |= int(!(x[b][d] >= lo[d] && x[b][d] <= hi[d]));
+// A moving wall or a body whose positions are not finite or beyond the box [lo, hi] at the scene's
+// time (a wall's motion, checked at set-up, should never put it there): "" when none.
+std::string movingBoundaryBlowUp(const Scene& s, const Vec3& lo, const Vec3& hi) {
+    for (const ParticleSystem* w : s.boundaries()) {
+        if (!w->moves()) continue;
+        const auto& x = w->particles.position();
+        const bool bad = parallelAny(x.size(), [&](std::size_t b) {
+            for (int d = 0; d < s.physics.dimension; ++d)
+                if (!(x[b][d] >= lo[d] && x[b][d] <= hi[d])) return true;
+            return false;
+        });
         if (!bad) continue;
         std::ostringstream m;
-        const Vec3 d = w.motion->displacement(s.time);
-        m << std::setprecision(6) << "blow-up at step " << s.step << ", time " << s.time << ": wall '" << w.name()
-          << "' is displaced by (" << d[0] << " " << d[1] << " " << d[2] << ") by its motion ("
-          << w.motion->describe() << "), beyond the domain or not finite";
+        m << std::setprecision(6) << "blow-up at step " << s.step << ", time " << s.time << ": ";
+        if (w->motion) {
+            const Vec3 d = w->motion->displacement(s.time);
+            m << "wall '" << w->name() << "' is displaced by (" << d[0] << " " << d[1] << " " << d[2]
+              << ") by its motion (" << w->motion->describe() << "), beyond the domain or not finite";
+        } else
+            m << "body '" << w->name() << "' is beyond the domain or not finite (centre of mass "
+              << w->body->state().position.transpose() << ")";
         return m.str();
     }
     return {};
 }
 } // namespace
 
+std::vector<const Model*> Simulation::models() const {
+    std::vector<const Model*> out{pressure_.get(), integrator_.get()};
+    for (const Model* m : {static_cast<const Model*>(viscosity_.get()), static_cast<const Model*>(boundaryModel_.get()),
+                           static_cast<const Model*>(densityDiffusion_.get()), static_cast<const Model*>(shifting_.get())})
+        if (m) out.push_back(m);
+    for (const auto& f : forces_) out.push_back(f.get());
+    for (const auto& p : passive_) out.push_back(p.get());
+    return out;
+}
+
 std::string Simulation::findBlowUp(bool& densityOnly) const {
     densityOnly = false;
-    if (std::string wall = movingWallBlowUp(scene_, blowUpMin_, blowUpMax_); !wall.empty()) return wall;
-    const auto& f = scene_.fluid;
+    if (std::string boundary = movingBoundaryBlowUp(scene_, blowUpMin_, blowUpMax_); !boundary.empty()) return boundary;
+    std::string worst;
+    for (const ParticleSystem* f : scene_.ofRole(SystemRole::fluid)) {
+        bool density = false;
+        const std::string found = findBlowUp(*f, density);
+        if (!found.empty() && (worst.empty() || (densityOnly && !density))) {
+            worst = found;
+            densityOnly = density;
+        }
+    }
+    return worst;
+}
+
+std::string Simulation::findBlowUp(const ParticleSystem& system, bool& densityOnly) const {
+    const auto& f = system.particles;
     const auto& x = f.position();
     const auto& v = f.velocity();
     const auto& rho = f.density();
     const auto& p = f.pressure();
     const auto& a = f.acceleration();
     const int dim = scene_.physics.dimension;
-    const double rho0 = scene_.physics.rho0;
+    const double rho0 = system.rho0;
+    const std::size_t n = system.ownedSize();
     // worst particle: not finite > far outside > largest density error
     long worst = -1;
     int worstKind = 0; // 3 not finite, 2 outside, 1 density
@@ -837,20 +1147,18 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
     // a parallel look first (every step); the serial search for the worst particle only after
     // a blow-up
     // (without branches: a value not finite makes the sum's s − s NaN, which fails == 0)
-    int any = 0;
     const double speed2 = blowUpSpeed_ * blowUpSpeed_;
     bool bounded[3];
     for (int d = 0; d < 3; ++d) bounded[d] = d < dim && !periodic_.axis[d];
-#pragma omp parallel for schedule(static) reduction(| : any)
-    for (std::size_t i = 0; i < x.size(); ++i) {
+    const bool any = parallelAny(n, [&](std::size_t i) {
         const Scalar sum = x[i].sum() + v[i].sum() + a[i].sum() + rho[i] + p[i];
         int bad = int(!(sum - sum == 0)) | int(v[i].squaredNorm() > speed2) | int((rho[i] - rho0) / rho0 > worstDensity);
         for (int d = 0; d < 3; ++d) bad |= int(bounded[d]) & (int(x[i][d] < blowUpMin_[d]) | int(x[i][d] > blowUpMax_[d]));
-        any |= bad;
-    }
+        return bad != 0;
+    });
     densityOnly = false;
     if (!any) return {};
-    for (std::size_t i = 0; i < x.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
         if (!x[i].allFinite() || !v[i].allFinite() || !a[i].allFinite() || !std::isfinite(rho[i]) ||
             !std::isfinite(p[i])) {
             worst = long(i);
@@ -878,7 +1186,8 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
     const std::size_t i = std::size_t(worst);
     std::ostringstream s;
     s << std::setprecision(6) << "blow-up at step " << scene_.step << ", time " << scene_.time << ": particle "
-      << f.id()[i] << " at (" << x[i].transpose() << ") with velocity (" << v[i].transpose() << ") ";
+      << f.id()[i] << " of " << system.name() << " at (" << x[i].transpose() << ") with velocity ("
+      << v[i].transpose() << ") ";
     if (worstKind == 3) s << "has a value that is not finite (density " << rho[i] << ", pressure " << p[i] << ")";
     else if (worstKind == 2 && v[i].norm() > blowUpSpeed_) s << "moves faster than " << blowUpSpeed_ << " m/s";
     else if (worstKind == 2) s << "is far outside the domain";
@@ -887,24 +1196,46 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
 }
 
 void Simulation::write() {
-    // fixed walls once (later times refer to them), moving walls at every written time; a wall
-    // whose boundary model mirrors the fluid's pressure has no pressure nor density of its own
-    // (the arrays hold nothing meaningful): they are left out rather than written as 0
-    std::vector<const ParticleSet*> walls;
-    for (auto& w : scene_.walls) {
-        if (w.pressureMirrored) {
-            w.particles.setUndefined("pressure");
-            w.particles.setUndefined("density");
+    // every system at every written time: a wall's own pressure and density change (adami), and
+    // each time directory is whole by itself (a fixed wall's positions are written again: VTK
+    // XML PolyData cannot take another file's points). A wall whose boundary model mirrors the
+    // fluid's pressure has no pressure nor density of its own (the arrays hold nothing
+    // meaningful): they are left out rather than written as 0
+    for (ParticleSystem* w : scene_.boundaries())
+        if (w->pressureMirrored) {
+            w->particles.setUndefined("pressure");
+            w->particles.setUndefined("density");
         }
-        if (w.moving() || !staticWallsWritten_) walls.push_back(&w.particles);
-    }
-    staticWallsWritten_ = true;
-    writer_->write(scene_.time, scene_.fluid, walls, writeFields_, {{"uniform/time", timeFile()}});
-    ++writes_;
+    // the other systems: walls and bodies (sampled anew on a restart; a body's state is in
+    // uniform/bodies) and passive systems (their particles continue: restart fields)
+    std::vector<CaseWriter::SystemFile> others;
+    for (const auto& p : scene_.systems)
+        if (p.get() != fluid_) others.push_back({&p->particles, p->role == SystemRole::passive});
+    std::vector<std::pair<std::string, std::string>> extra{{"uniform/time", timeFile()},
+                                                           {"uniform/particles", particlesFile()}};
+    if (const std::string bodies = bodiesFile(); !bodies.empty()) extra.emplace_back("uniform/bodies", bodies);
+    writer_->write(scene_.time, fluid_->particles, others, writeFields_, extra);
+}
+
+void Simulation::takeCaseTimes() {
+    const CaseWriter::RunStart start = writer_->beginRun(scene_.time, restartedFrom_);
+    const auto names = [](const std::vector<std::string>& list) {
+        std::string text;
+        for (const auto& n : list) text += " " + n;
+        return text;
+    };
+    if (!start.movedAside.empty())
+        log::warning((restarted_ ? "the times after the restart time " + restartedFrom_ + " are not continued: moved them"
+                                 : "a run from startTime owns the case's times: moved those of an earlier run") +
+                     " to " + (case_.dir / "previousRun").string() + ":" + names(start.movedAside) +
+                     (start.replacedPreviousRun ? " (removing the previousRun/ of an earlier start)" : ""));
+    if (!start.notListed.empty())
+        log::info("The times before startTime" + names(start.notListed) +
+                  " are an earlier run's: kept, but not listed in " + writer_->collectionFile().filename().string());
 }
 
 void Simulation::writeInitialState() {
-    writer_->rebuildCollection();
+    takeCaseTimes();
     evaluate(scene_.time, Scalar(time_->initialDeltaT()));
     write();
 }
@@ -920,6 +1251,7 @@ extern "C" void onStopSignalDuringSetUp(int signal) {
     for (const char* part : {log::signalName(signal), " received during set-up (before the time loop): stopped\n"})
         for (; *part && n + 1 < sizeof text; ++part) text[n++] = *part;
     log::writeLastWords(text, n);
+    CaseLock::releaseInSignalHandler(); // a run that never started leaves no lock behind
     ::signal(signal, SIG_DFL); // die of the signal: the status a shell shows is 128 + signal
     ::raise(signal);
 }
@@ -976,8 +1308,8 @@ RunSummary Simulation::run() {
     StopSignals signals;
     auto& s = scene_;
     RunSummary summary;
-    summary.fluidParticles = s.fluid.size();
-    summary.wallParticles = s.wallParticles();
+    summary.fluidParticles = s.particlesOf(SystemRole::fluid);
+    summary.wallParticles = s.particlesOf(SystemRole::wall) + s.particlesOf(SystemRole::body);
 
     const double startTime = s.time;
     const long startStep = s.step;
@@ -1005,7 +1337,7 @@ RunSummary Simulation::run() {
         log::setFatalSignalContext(text);
     };
 
-    writer_->rebuildCollection();
+    takeCaseTimes();
     if (!restarted_) {
         evaluate(s.time, Scalar(time_->initialDeltaT()));
         writeAndLog();
@@ -1013,9 +1345,10 @@ RunSummary Simulation::run() {
     setFatalSignalContext();
     {
         double vMax0 = 0;
-        for (const auto& v : s.fluid.velocity()) vMax0 = std::max(vMax0, double(v.norm()));
-        for (const auto& w : s.walls)
-            if (w.moving()) vMax0 = std::max(vMax0, double(w.motion->velocity(s.time).norm()));
+        for (const ParticleSystem* f : s.ofRole(SystemRole::fluid))
+            for (const auto& v : f->particles.velocity()) vMax0 = std::max(vMax0, double(v.norm()));
+        for (const ParticleSystem* w : s.boundaries())
+            if (w->motion) vMax0 = std::max(vMax0, double(w->motion->velocity(s.time).norm()));
         blowUpSpeedAuto_ = std::max({blowUpSpeedFloor_, 100 * double(s.constants.soundSpeed), 100 * vMax0, 1.0});
         blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
     }
@@ -1023,14 +1356,37 @@ RunSummary Simulation::run() {
     long iterations = 0, iterativeSteps = 0;
     // The states before the last two steps. A density error shows in the evaluation of the
     // step after the one that caused it, so such a blow-up rolls back two steps.
+    // Every system whose state is not a function of time (fluids, passive systems) is kept.
     struct Snapshot {
-        ParticleSet fluid;
+        std::vector<ParticleSet> systems; // of snapshotSystems, in order
+        std::vector<RigidBody::State> bodies;
         double time = 0, lastDeltaT = 0, dtTaken = 0, deltaTCap = 0;
         long step = 0;
         int holdSteps = 0;
         bool valid = false;
     };
-    Snapshot previous{ParticleSet(s.fluid.name())}, last{ParticleSet(s.fluid.name())};
+    std::vector<ParticleSystem*> snapshotSystems;
+    for (const auto& p : s.systems)
+        if (p->isFluid() || p->isPassive()) snapshotSystems.push_back(p.get());
+    const auto bodies = s.ofRole(SystemRole::body);
+    const auto take = [&](Snapshot& snap) {
+        snap.systems.resize(snapshotSystems.size());
+        for (std::size_t k = 0; k < snapshotSystems.size(); ++k) snap.systems[k].copyDataFrom(snapshotSystems[k]->particles);
+        snap.bodies.clear();
+        for (const ParticleSystem* b : bodies) snap.bodies.push_back(b->body->state());
+    };
+    const auto restore = [&](const Snapshot& snap) {
+        for (std::size_t k = 0; k < snapshotSystems.size(); ++k) {
+            snapshotSystems[k]->particles.copyDataFrom(snap.systems[k]);
+            s.search.positionsChanged(snapshotSystems[k]->index);
+        }
+        for (std::size_t k = 0; k < bodies.size(); ++k) {
+            bodies[k]->body->setState(snap.bodies[k]);
+            bodies[k]->body->place(*bodies[k]);
+        }
+        ++s.stateVersion;
+    };
+    Snapshot previous, last;
     int retries = 0, stepsSinceRetry = 0;
     bool keepPrevious = false; // after going back one step, 'previous' is still the step before
     // Step lines: every logInterval-th step (automatic: from the number of steps the run is
@@ -1040,12 +1396,13 @@ RunSummary Simulation::run() {
     bool logNextStep = true;
     log::info("\nStarting time loop\n");
     while (!time_->finished(s.time)) {
-        if (sortEvery_ > 0 && s.step % sortEvery_ == 0) resortFluid(s);
+        if (sortEvery_ > 0 && s.step % sortEvery_ == 0)
+            for (ParticleSystem* f : s.ofRole(SystemRole::fluid)) resortSystem(s, *f);
         bool capped = false;
         const double dt = time_->nextDeltaT(s.time, stableDeltaT(), deltaTCap_, &capped);
         if (!keepPrevious) std::swap(previous, last);
         keepPrevious = false;
-        last.fluid.copyDataFrom(s.fluid);
+        take(last);
         last.time = s.time;
         last.step = s.step;
         last.lastDeltaT = lastDeltaT_;
@@ -1054,20 +1411,22 @@ RunSummary Simulation::run() {
         last.holdSteps = deltaTHoldSteps_;
         last.valid = true;
 
-        integrator_->step(s, Scalar(dt), [&](double t) { evaluate(t, Scalar(dt)); });
+        // the step starts on the lists of its state: an integrator that carries a_n over from the
+        // last step advances the integrated fields (continuity density) on them before it evaluates;
+        // after a restart, a re-sort or a blow-up's roll-back they are made here
+        updateLists(s.time);
+        integrator_->step(s, *services_, Scalar(dt), [&](double t, Scalar stepDt) { evaluate(t, stepDt); });
+        advanceBodies(dt);
+        for (auto& p : passive_) p->afterStep(s, Step{last.time, Scalar(dt), *services_});
         s.time = last.time + dt;
         ++s.step;
-        if (periodic_.any()) {
-            auto& x = s.fluid.position();
-#pragma omp parallel for schedule(static)
-            for (std::size_t i = 0; i < x.size(); ++i) periodic_.wrap(x[i]);
-        }
+        ++s.stateVersion;
         bool densityBlowUp = false;
         const std::string blowUp = findBlowUp(densityBlowUp);
         if (!blowUp.empty()) {
             const bool twoBack = densityBlowUp && previous.valid;
             Snapshot& good = twoBack ? previous : last;
-            s.fluid.copyDataFrom(good.fluid);
+            restore(good);
             s.time = good.time;
             s.step = good.step;
             lastDeltaT_ = good.lastDeltaT;
@@ -1083,6 +1442,7 @@ RunSummary Simulation::run() {
             };
             deltaTCap_ = good.deltaTCap;
             deltaTHoldSteps_ = good.holdSteps;
+            time_->scheduleNextWrite(good.time); // the steps taken again write the times they pass
             if (reduceDeltaTOnBlowUp_ && retries < blowUpRetries_) {
                 removeAbandonedTimes();
                 ++retries;
@@ -1140,8 +1500,11 @@ RunSummary Simulation::run() {
         const long interval = logInterval_ > 0 ? logInterval_ : automaticLogInterval(estimatedSteps);
         if (logNextStep || s.step % interval == 0 || time_->finished(s.time) || !converged || signal != 0) {
             logNextStep = false;
-            const auto& v = s.fluid.velocity();
-            const double vMax = std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); }));
+            double vMax = 0;
+            for (const ParticleSystem* f : s.ofRole(SystemRole::fluid)) {
+                const auto& v = f->particles.velocity();
+                vMax = std::max(vMax, std::sqrt(parallelMax(f->ownedSize(), [&](std::size_t i) { return v[i].squaredNorm(); })));
+            }
             std::ostringstream line;
             line << "Time = " << std::setprecision(6) << s.time << "  step " << s.step << "  deltaT "
                  << std::setprecision(3) << dt << "  maxU " << vMax << "  rhoErr max " << 100 * err.max
@@ -1178,7 +1541,7 @@ RunSummary Simulation::run() {
     for (auto& f : functions_) f->end(s);
     summary.steps = s.step - startStep;
     summary.endTime = s.time;
-    summary.writes = writes_;
+    summary.writes = int(writer_->timesWritten());
     summary.wallSeconds = wallSeconds();
     summary.averageIterations = iterativeSteps ? double(iterations) / iterativeSteps : 0.0;
     return summary;

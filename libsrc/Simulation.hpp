@@ -5,7 +5,9 @@
 
 #include "Case.hpp"
 #include "CaseWriter.hpp"
+#include "PassiveModel.hpp"
 #include "ModelRegistry.hpp"
+#include "Step.hpp"
 #include "TimeControl.hpp"
 
 #include <limits>
@@ -71,14 +73,19 @@ public:
     void writeInitialState();
 
     Scene& scene() { return scene_; }
+    const Scene& scene() const { return scene_; }
     const Case& caseFiles() const { return case_; }
     const TimeControl& timeControl() const { return *time_; }
     std::string schemesSummary() const;
 
-    // One force evaluation at the current state, the walls placed at 'time', with step size dt
-    // (public for tests).
+    // One force evaluation at the current state, the moving boundaries placed at 'time', with
+    // step size dt (public for tests).
     void evaluate(double time, Scalar dt);
+    // The core's services to the models (Step.hpp).
+    const StepServices& services() const;
     double stableDeltaT() const;
+    // Every model the case names (for what they all declare: Model::maxTimeStep).
+    std::vector<const Model*> models() const;
 
 private:
     void readRunControls(const Dictionary& control);
@@ -96,15 +103,42 @@ private:
     // Moves the moving walls to where their motion puts them at 'time' (positions, velocities,
     // accelerations).
     void placeMovingWalls(double time);
+    // Places the moving walls at 'time' and makes the neighbour lists those of the systems' current
+    // positions with the boundaries there (kept when they are already).
+    void updateLists(double time);
+    // Advances every rigid body over dt with the fluid's force and moment of the last evaluation
+    // and gravity, then keeps it out of the walls and the other bodies (resolveContacts).
+    void advanceBodies(double dt);
+    // Moves a body out of the walls and bodies it has entered (closer than Δx) and stops its
+    // approach there (RigidBody::resolveContact).
+    void resolveContacts(ParticleSystem& body);
+    // Registers every system with the neighbour search and declares who interacts with whom:
+    // each fluid with itself, the other fluids and every boundary.
+    void declareInteractions();
     bool restartFromLatest();
+    // Refuses a restart from time 'name' (in 'dir') of other particles than this set-up makes:
+    // another dimension, particleSpacing, supportRadius, rho0, kernel, particle mass or fluid
+    // systems than uniform/particles holds (an InputError naming the keyword and both values);
+    // logs the walls added or removed since.
+    void checkRestartMatches(const std::filesystem::path& dir, const ParticleSet& saved) const;
+    // The case's times for this run (CaseWriter::beginRun), logged.
+    void takeCaseTimes();
     void write();
+    // uniform/particles of a written time: what a restart from it must match.
+    std::string particlesFile() const;
     std::string timeFile() const;
+    // uniform/bodies: every body's state in full precision (empty without bodies), and read back.
+    std::string bodiesFile() const;
+    void readBodies(const std::filesystem::path& timeDir);
+    // A restart's passive systems: their particles and restart fields from <name>.vtp of the time.
+    void restorePassiveSystems(const std::filesystem::path& timeDir);
     // Describes the worst problem of the current state (empty when healthy); 'densityOnly'
     // tells that it is a density error (measured at the state before the last step).
     std::string findBlowUp(bool& densityOnly) const;
+    std::string findBlowUp(const ParticleSystem& system, bool& densityOnly) const;
     void checkWritable() const;
-    // Every name in controlDict's writeFields is a field of the fluid or of a wall (a misspelt
-    // one would silently never be written).
+    // Every name in controlDict's writeFields is a field of some system (a misspelt one would
+    // silently never be written).
     void checkWriteFields() const;
 
     Case case_;
@@ -122,6 +156,8 @@ private:
     std::unique_ptr<BoundaryModel> boundaryModel_;
     std::unique_ptr<DensityDiffusion> densityDiffusion_;
     std::unique_ptr<ShiftingModel> shifting_;
+    std::vector<std::unique_ptr<PassiveModel>> passive_;
+    std::unique_ptr<CoreServices> services_;
     std::vector<std::string> writeFields_;
     int sortEvery_ = 10;
     int logInterval_ = 0; // controlDict logInterval: a step line every N steps (0: automatic)
@@ -142,13 +178,14 @@ private:
     double deltaTCap_ = std::numeric_limits<double>::infinity();
     int deltaTHoldSteps_ = 0;
     std::vector<Scalar> initialDepths_; // of the fluid particles, where their block starts hydrostatic
+    ParticleSystem* fluid_ = nullptr;   // the fluid system constant/geometry's fluid blocks make
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
     Periodicity periodic_;
-    bool staticWallsWritten_ = false;
+    double listsBoundaryTime_ = std::numeric_limits<double>::quiet_NaN(); // where the boundaries were when the lists were made (NaN: bodies moved since)
     bool restarted_ = false;
+    std::string restartedFrom_; // the time's name (restarted_)
     bool forceLargeCase_ = false;
-    int writes_ = 0;
 };
 
 } // namespace spindrift

@@ -1,24 +1,39 @@
 // Spindrift — non-pressure forces: viscosity (plugins/viscosity, one per case in sphSchemes
 // `viscosity { }`) and further forces (plugins/forces, any number in sphSchemes
 // `forces { name { type ...; } }`, e.g. vorticity confinement, surface tension).
-// Each adds its result to fluid.acceleration(), as a pair term through the core's pair loop
-// (PairLoop.hpp: addPairAcceleration). They run after the density is known and before the
-// pressure model, so iterative pressure solvers predict with the non-pressure accelerations.
+// Each adds its result to the fluid system's acceleration(), as a pair term through the core's
+// pair loop (PairLoop.hpp: addPairAcceleration), once per evaluation and fluid system. They run
+// after the density is known and before the pressure model, so iterative pressure solvers
+// predict with the non-pressure accelerations. A viscosity limits the step by its viscous limit
+// (Model::maxTimeStep).
 #pragma once
 
-#include "ModelContext.hpp"
+#include "Model.hpp"
+#include "Step.hpp"
+
+#include <cmath>
 
 namespace spindrift {
 
-class ForceModel {
+class ForceModel : public Model {
 public:
-    virtual ~ForceModel() = default;
-    virtual void initialise(Scene&) {}
-    virtual void addAcceleration(Scene& scene, Scalar dt) = 0;
+    virtual void addAcceleration(Scene& scene, ParticleSystem& fluid, const Step& step) = 0;
+    // The forces its last addAcceleration of 'fluid' exerted on the boundaries (Reactions.hpp:
+    // the reactions of its boundary terms, as viscous for a viscosity, other for another force;
+    // nothing for a model without a boundary term). Called right after addAcceleration when
+    // something wants them.
+    virtual void addReactions(const Scene& scene, const ParticleSystem& fluid, const Step& step,
+                              Reactions& reactions) const = 0;
     virtual ResultKind result() const { return ResultKind::acceleration; }
-    // Kinematic viscosity for the viscous time-step limit Δt <= 0.125 h²/ν (0 = no limit).
-    virtual Scalar timeStepViscosity() const { return 0; }
 };
+
+// The viscous step limit of Morris, Fox & Zhu (1997), Δt ≤ 0.125 h_s²/ν, on the smoothing length
+// h_s = h/2 (on the support radius itself the limit is 4 times too large: Poiseuille flow blows
+// up); +∞ for ν = 0.
+inline double viscousTimeStepLimit(const Scene& s, double nu) {
+    const double h = s.constants.supportRadius;
+    return nu > 0 ? 0.125 * 0.25 * h * h / nu : std::numeric_limits<double>::infinity();
+}
 
 class ViscosityModel : public ForceModel {};
 class ExtraForce : public ForceModel {};

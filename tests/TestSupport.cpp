@@ -68,12 +68,20 @@ PhysicalParameters physicsFor(int dim, Scalar dx, Scalar supportFactor, Scalar r
     p.dimension = dim;
     p.rho0 = rho0;
     p.particleSpacing = dx;
-    p.supportRadius = supportFactor * dx;
+    p.supportRadiusFactor = supportFactor;
     p.gravity = Vec3::Zero();
     return p;
 }
 
-void fillLattice(Scene& s, const Kernel& kernel, const Vec3& lo, const Vec3& hi) {
+SceneConstants constantsFor(const PhysicalParameters& physics) {
+    SceneConstants c;
+    c.supportRadius = physics.supportRadiusFactor * physics.particleSpacing;
+    c.rho0 = physics.rho0;
+    c.particleMass = physics.particleMass();
+    return c;
+}
+
+ParticleSystem& fillLattice(Scene& s, const Kernel& kernel, const Vec3& lo, const Vec3& hi) {
     const int dim = s.physics.dimension;
     const Scalar dx = s.physics.particleSpacing;
     std::vector<Vec3> points;
@@ -85,44 +93,91 @@ void fillLattice(Scene& s, const Kernel& kernel, const Vec3& lo, const Vec3& hi)
                 points.emplace_back(lo[0] + (i + 0.5) * dx, lo[1] + (j + 0.5) * dx,
                                     dim == 3 ? lo[2] + (k + 0.5) * dx : 0.0);
     s.kernel.build(kernel);
-    s.fluid.resize(points.size());
-    s.fluid.setParticleMass(latticeParticleMass(s.kernel, s.physics));
-    s.constants.supportRadius = s.physics.supportRadius;
-    s.constants.particleMass = s.fluid.particleMass();
+    const bool added = s.ofRole(SystemRole::fluid).empty();
+    ParticleSystem& fluid = added ? s.addSystem("fluid", SystemRole::fluid) : fluidOf(s);
+    fluid.rho0 = s.physics.rho0;
+    auto& set = fluid.particles;
+    set.resize(points.size());
+    set.setParticleMass(latticeParticleMass(s.kernel, s.physics));
+    s.constants.supportRadius = s.kernel.supportRadius();
+    s.constants.particleMass = set.particleMass();
+    s.constants.rho0 = s.physics.rho0;
     for (std::size_t i = 0; i < points.size(); ++i) {
-        s.fluid.position()[i] = points[i];
-        s.fluid.density()[i] = s.physics.rho0;
-        s.fluid.id()[i] = Index(i);
+        set.position()[i] = points[i];
+        set.density()[i] = s.physics.rho0;
+        set.id()[i] = Index(i);
     }
-    const Scalar margin = 4 * s.physics.supportRadius;
-    Vec3 dlo = lo - Vec3::Constant(margin), dhi = hi + Vec3::Constant(margin);
-    if (dim == 2) dlo[2] = dhi[2] = 0;
-    s.search.setup(s.physics.supportRadius, dim, dlo, dhi);
-    s.search.build(s.fluid.position());
+    if (added) {
+        const Scalar margin = 4 * s.constants.supportRadius;
+        Vec3 dlo = lo - Vec3::Constant(margin), dhi = hi + Vec3::Constant(margin);
+        if (dim == 2) dlo[2] = dhi[2] = 0;
+        s.search.setup(s.constants.supportRadius, dim, dlo, dhi);
+        s.registerWithSearch(fluid);
+    }
+    rebuild(s);
+    return fluid;
 }
 
-WallSystem& addWallSystem(Scene& s, const std::string& name, const std::vector<Vec3>& positions) {
-    WallSystem& w = s.walls.emplace_back(name);
+ParticleSystem& addFluid(Scene& s, std::size_t n, const std::string& name) {
+    ParticleSystem& fluid = s.addSystem(name, SystemRole::fluid);
+    fluid.rho0 = s.physics.rho0;
+    fluid.particles.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        fluid.particles.density()[i] = s.physics.rho0;
+        fluid.particles.id()[i] = Index(i);
+    }
+    return fluid;
+}
+
+ParticleSystem& fluidOf(Scene& s) {
+    const auto fluids = s.ofRole(SystemRole::fluid);
+    return fluids.empty() ? addFluid(s, 0) : *fluids.front();
+}
+const ParticleSystem& fluidOf(const Scene& s) { return *s.ofRole(SystemRole::fluid).at(0); }
+ParticleSystem& wallOf(Scene& s, std::size_t k) { return *s.boundaries().at(k); }
+std::vector<std::reference_wrapper<ParticleSystem>> walls(Scene& s) {
+    std::vector<std::reference_wrapper<ParticleSystem>> out;
+    for (ParticleSystem* b : s.boundaries()) out.push_back(*b);
+    return out;
+}
+std::vector<std::reference_wrapper<const ParticleSystem>> walls(const Scene& s) {
+    std::vector<std::reference_wrapper<const ParticleSystem>> out;
+    for (const ParticleSystem* b : s.boundaries()) out.push_back(*b);
+    return out;
+}
+
+ParticleSystem& addWallSystem(Scene& s, const std::string& name, const std::vector<Vec3>& positions) {
+    ParticleSystem& w = s.addSystem(name, SystemRole::wall);
     w.particles.resize(positions.size());
     for (std::size_t b = 0; b < positions.size(); ++b) {
         w.particles.position()[b] = positions[b];
         w.particles.density()[b] = s.physics.rho0;
         w.particles.id()[b] = Index(b);
     }
-    std::vector<NeighbourSearch::WallSource> sources;
-    for (auto& wall : s.walls) sources.push_back({&wall.particles.position(), wall.moving()});
-    s.search.setWalls(sources);
+    s.registerWithSearch(w);
     return w;
 }
 
 void setWallMasses(Scene& s, Scalar mass) {
     static std::vector<std::unique_ptr<std::vector<Scalar>>> keep; // outlives the scene's pointers
-    for (auto& w : s.walls) {
-        keep.push_back(std::make_unique<std::vector<Scalar>>(w.size(), mass));
-        w.mass = keep.back().get();
-        w.pressureMirrored = true;
+    for (ParticleSystem* w : s.boundaries()) {
+        keep.push_back(std::make_unique<std::vector<Scalar>>(w->size(), mass));
+        w->mass = keep.back().get();
+        w->pressureMirrored = true;
     }
 }
+
+void rebuild(Scene& s) {
+    for (std::size_t k = 0; k < s.search.systemCount(); ++k) s.search.positionsChanged(k);
+    s.search.build();
+}
+
+const CoreServices& noServices() {
+    static const CoreServices none;
+    return none;
+}
+
+Step stepOf(const Scene& s, Scalar dt, const StepServices& core) { return {s.time, dt, core}; }
 
 BlockScene::BlockScene(int dim, const std::string& kernelName, double supportFactor) {
     s.physics = physicsFor(dim, 0.01, supportFactor);
@@ -134,25 +189,26 @@ Vec3 BlockScene::block(int n, double scale) {
     const Vec3 hi(n * dx, n * dx, s.physics.dimension == 3 ? n * dx : 0);
     fillLattice(s, *kernel, Vec3::Zero(), hi);
     const Vec3 c = 0.5 * hi;
-    for (auto& x : s.fluid.position()) x = c + scale * (x - c);
-    s.search.build(s.fluid.position());
+    for (auto& x : fluid().particles.position()) x = c + scale * (x - c);
+    rebuild(s);
     return c;
 }
 
 void BlockScene::advance(PressureModel& p, double dt) {
-    auto& x = s.fluid.position();
-    auto& v = s.fluid.velocity();
+    auto& set = fluid().particles;
+    auto& x = set.position();
+    auto& v = set.velocity();
     for (std::size_t i = 0; i < x.size(); ++i) {
-        v[i] += dt * s.fluid.acceleration()[i];
+        v[i] += dt * set.acceleration()[i];
         x[i] += dt * v[i];
     }
-    s.search.build(x);
-    p.computeDensity(s);
+    rebuild(s);
+    p.computeDensity(s, fluid(), step(Scalar(dt)));
 }
 
 double BlockScene::maxCompression() const {
     double e = 0;
-    for (auto rho : s.fluid.density()) e = std::max<double>(e, (rho - s.physics.rho0) / s.physics.rho0);
+    for (auto rho : fluidOf(s).particles.density()) e = std::max<double>(e, (rho - s.physics.rho0) / s.physics.rho0);
     return e;
 }
 

@@ -3,8 +3,8 @@
 # (<path>)" and exit status 1, never VTK's own error text; every time written before is kept
 # complete (its fluid.vtp whole, uniform/time present, listed in the .pvd), no partial or hidden
 # time directory is left, and the case restarts from the newest time once there is room.
-# Runs on a 320 KiB tmpfs; skipped (exit 77) where one cannot be mounted (not root, a container
-# without CAP_SYS_ADMIN).
+# Runs on a 448 KiB tmpfs (room for three times of fluid and wall files, about 112 KiB each);
+# skipped (exit 77) where one cannot be mounted (not root, a container without CAP_SYS_ADMIN).
 #   fullDisk.sh <spindrift> <tutorials dir>
 set -uo pipefail
 . "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
@@ -12,7 +12,7 @@ solver=$1 tutorials=$2
 work=$(mktemp -d)
 disk="$work/disk"
 mkdir -p "$disk"
-if ! mount -t tmpfs -o size=320k tmpfs "$disk" 2> "$work/mount.err"; then
+if ! mount -t tmpfs -o size=448k tmpfs "$disk" 2> "$work/mount.err"; then
     echo "SKIP: cannot mount a small tmpfs to fill ($(head -c 200 "$work/mount.err")): needs root (CAP_SYS_ADMIN)"
     rm -rf "$work"
     exit 77

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Interruptions lose nothing: SIGINT/SIGTERM/SIGHUP write the current time and exit 0; during
-# set-up they stop at once with a message naming the signal (status 128 + signal); a fatal
-# signal (a plugin that dereferences null) leaves its last words, naming the last completed
-# step, in the log and on stderr and the status of the signal (139); a changed controlDict is
-# re-read during the run; SIGKILL in the middle of a write leaves only complete time directories
-# (and a .pvd listing only those), and the run continues from the latest.
+# set-up they stop at once with a message naming the signal (status 128 + signal) and leave no
+# case lock; a fatal signal (a plugin that dereferences null) leaves its last words, naming the
+# last completed step, in the log and on stderr and the status of the signal (139); a changed
+# controlDict is re-read during the run; SIGKILL in the middle of a write leaves only complete
+# time directories (and a .pvd listing only those), and the run continues from the latest;
+# SIGKILL between a time directory's rename and the .pvd's leaves the .pvd behind by that time
+# only, never ahead, until the next run; a restart of other particles is refused; a time
+# directory the user cannot move or remove is named, never left hidden without a word.
 #   interruptions.sh <spindrift> <tutorials dir> <libspindriftTestFaultyForce.so>
 set -euo pipefail
 . "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: a tutorial's input, never its results
@@ -69,6 +72,7 @@ for sig in INT TERM HUP; do
     grep -qx "spindrift: SIG$sig received during set-up (before the time loop): stopped" "$work/setUp$sig/log" \
         || fail "SIG$sig during set-up: no message: $(tail -n 3 "$work/setUp$sig/log")"
     if ls "$work/setUp$sig" | grep -q '^[0-9]'; then fail "SIG$sig during set-up: a time was written"; fi
+    if ls -a "$work/setUp$sig" | grep -q '^\.spindrift\.lock'; then fail "SIG$sig during set-up: the case lock is left"; fi
     echo "ok SIG$sig during set-up: exit status $status, '$(tail -n 1 "$work/setUp$sig/log")'"
 done
 
@@ -120,3 +124,71 @@ checkComplete "$work/kill"
 [ -d "$work/kill/0.03" ] || fail "the restarted run did not reach 0.03"
 if ls -a "$work/kill" | grep -q '\.tmp$'; then fail "temporary directories left after the restart"; fi
 echo "ok SIGKILL during a write: only complete times, restart continued to 0.03"
+
+# SIGKILL between the rename of time 0.01 (the 3rd write) and that of the .pvd: the .pvd, whose
+# new text was ready in <case>.pvd.tmp, is behind by 0.01 only and lists nothing that is not
+# complete; the next run (a restart) lists it again
+newCase window 0.02
+set +e
+SPINDRIFT_FAULT_INJECTION=killAfterRename:3 "$solver" -case "$work/window" > "$work/window/log" 2>&1
+status=$?
+set -e
+[ $status -eq 137 ] || fail "window: expected the solver to be killed (137), got $status"
+[ -f "$work/window/0.01/fluid.vtp" ] || fail "window: 0.01 was not renamed before the kill"
+pvd="$work/window/window.pvd"
+grep -q 'file="0.005/fluid.vtp"' "$pvd" || fail "window: the .pvd lost 0.005"
+if grep -q 'file="0.01/' "$pvd"; then fail "window: the kill did not happen before the .pvd's rename"; fi
+for f in $(grep -o 'file="[^"]*"' "$pvd" | sed 's/file="//; s/"$//'); do
+    [ -f "$work/window/$f" ] || fail "window: the .pvd lists $f which does not exist"
+done
+grep -q 'file="0.01/fluid.vtp"' "$pvd.tmp" || fail "window: the .pvd's next text was not ready before the rename"
+sed -i -E "s/^startFrom .*/startFrom latestTime;/" "$work/window/system/controlDict"
+"$solver" -case "$work/window" > "$work/window/log2" 2>&1 || fail "window: the restart failed"
+grep -q "Restarting from time 0.01 " "$work/window/log2" || fail "window: did not restart from 0.01"
+checkComplete "$work/window"
+echo "ok SIGKILL between the renames: the .pvd behind by 0.01 only (never ahead), listed again by the restart"
+
+# a restart of other particles than its time's: refused, one line naming the file, the keyword
+# and both values, exit status 1, nothing written or moved
+newCase spacing 0.01
+"$solver" -case "$work/spacing" > "$work/spacing/log" 2>&1 || fail "spacing: the first run failed"
+sed -i -E "s/^startFrom .*/startFrom latestTime;/; s/^endTime .*/endTime 0.02;/" "$work/spacing/system/controlDict"
+sed -i -E "s/^particleSpacing .*/particleSpacing 0.002;/" "$work/spacing/constant/fluidProperties"
+before=$(ls -a "$work/spacing" | tr '\n' ' '; cat "$work/spacing/spacing.pvd")
+status=0
+"$solver" -case "$work/spacing" > "$work/spacing.log2" 2> "$work/spacing.err" || status=$?
+[ $status -eq 1 ] || fail "spacing: exit status $status, not 1"
+[ "$(wc -l < "$work/spacing.err")" -eq 1 ] || fail "spacing: not one line: $(cat "$work/spacing.err")"
+grep -qE "^$work/spacing/constant/fluidProperties:[0-9]+:1: error: particleSpacing 0.002 is not the 0.00142875 of time 0.01 \(.*0.01/uniform/particles\): a restart continues its particles; use particleSpacing 0.00142875, or 'startFrom startTime;' to start anew \(keyword 'particleSpacing'\)$" "$work/spacing.err" \
+    || fail "spacing: message '$(cat "$work/spacing.err")'"
+[ "$(ls -a "$work/spacing" | tr '\n' ' '; cat "$work/spacing/spacing.pvd")" = "$before" ] || fail "spacing: something was written or moved"
+echo "ok restart with another particleSpacing: exit status 1, '$(cat "$work/spacing.err")'"
+
+# another user (nobody) on a case of root's: a time directory it cannot move aside (a fresh run
+# owns the case's times) stops the run naming it; one it cannot remove after rewriting the time
+# (-dryRun from latestTime rewrites it) is named in a warning. Run as root only (setpriv).
+if [ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null; then
+    asNobody() { setpriv --reuid=65534 --regid=65534 --clear-groups "$@"; }
+    chmod 755 "$work"
+    newCase other 0.01
+    "$solver" -case "$work/other" > "$work/other/log" 2>&1 || fail "other user: the first run failed"
+    chmod 777 "$work/other"
+    chmod 000 "$work/other/0.01"
+    status=0
+    asNobody "$solver" -case "$work/other" > "$work/other/log2" 2> "$work/other/err" || status=$?
+    [ $status -eq 1 ] || fail "other user: exit status $status, not 1: $(cat "$work/other/err")"
+    grep -qE "^spindrift: error: cannot move '$work/other/0' \(an earlier run's time 0\) to '$work/other/previousRun': Permission denied; remove it \(or make it writable\): this run would mix it into its results$" "$work/other/err" \
+        || fail "other user: message '$(cat "$work/other/err")'"
+    [ -d "$work/other/0.01" ] || fail "other user: 0.01 is gone"
+    if ls -a "$work/other" | grep -q '\.old$'; then fail "other user: a hidden .old is left"; fi
+    echo "ok another user's time directory that cannot be moved: exit status 1, '$(cat "$work/other/err")'"
+    chmod 755 "$work/other/0.01"
+    sed -i -E "s/^startFrom .*/startFrom latestTime;/" "$work/other/system/controlDict"
+    asNobody "$solver" -case "$work/other" -dryRun > "$work/other/log3" 2>&1 || fail "other user: -dryRun failed: $(tail -n 3 "$work/other/log3")"
+    grep -q "Warning: time 0.01: the earlier contents could not be removed (Permission denied); they are kept in $work/other/.0.01.old: remove it by hand" "$work/other/log3" \
+        || fail "other user: no warning for the .0.01.old left: $(grep -i warn "$work/other/log3")"
+    [ -f "$work/other/0.01/fluid.vtp" ] && [ -d "$work/other/.0.01.old" ] || fail "other user: 0.01 not rewritten"
+    echo "ok another user's time that cannot be removed after a rewrite: named in a warning"
+else
+    echo "skipped the other-user checks (need root and setpriv)"
+fi

@@ -1,14 +1,17 @@
 """Checks that ParaView reads a Spindrift case collection (.pvd) as expected.
 
 Usage:
-    pvpython pvpython_check.py [--blocks N] <file.pvd> <expectedTimeCount> <array1> [array2 ...]
+    pvpython pvpython_check.py [--blocks N] [--changing BLOCK:ARRAY] <file.pvd> <expectedTimeCount>
+            <array1> [array2 ...]
 
 Opens the .pvd with ParaView's PVD reader, checks that it reports exactly
 <expectedTimeCount> time steps, then, at every time step, updates the pipeline, fetches the
 data and checks that the fluid data set (part 0 of the collection; a multiblock data set when
 the case also has walls, part 1) has more than zero points and every named point-data array.
 With --blocks N, every time step must hold exactly N data sets with points: one block per
-particle system (the fluid, and each wall system, fixed or moving).
+particle system (the fluid, and each wall system, fixed or moving). With --changing BLOCK:ARRAY,
+the block of that name (a wall system) has the point array at every time step, and its values
+at the last time step are not those of the first (a wall's own pressure, following the flow).
 Prints one summary line and exits 0; on any failure prints the reasons to stderr and exits 1.
 """
 
@@ -23,8 +26,12 @@ def fail(messages):
 
 def parse_arguments(argv):
     blocks = None
-    if len(argv) > 2 and argv[1] == "--blocks":
-        blocks = int(argv[2])
+    changing = None
+    while len(argv) > 2 and argv[1] in ("--blocks", "--changing"):
+        if argv[1] == "--blocks":
+            blocks = int(argv[2])
+        else:
+            changing = tuple(argv[2].split(":", 1))
         argv = argv[:1] + argv[3:]
     if len(argv) < 4:
         fail(["usage: pvpython pvpython_check.py <file.pvd> <expectedTimeCount> "
@@ -33,7 +40,15 @@ def parse_arguments(argv):
         expected = int(argv[2])
     except ValueError:
         fail(["expectedTimeCount must be an integer, got '%s'" % argv[2]])
-    return argv[1], expected, argv[3:], blocks
+    return argv[1], expected, argv[3:], blocks, changing
+
+
+def named_block(data, name):
+    """The leaf whose block name is 'name' (a part's name in the .pvd), or None."""
+    for path, block in leaves(data):
+        if path.split("/")[0].split(":", 1)[-1] == name:
+            return block
+    return None
 
 
 def leaves(data, path=""):
@@ -68,7 +83,7 @@ def fluid_block(data):
 
 
 def main(argv):
-    pvd, expected, arrays, blocks = parse_arguments(argv)
+    pvd, expected, arrays, blocks, changing = parse_arguments(argv)
 
     import os
     if not os.path.isfile(pvd):
@@ -93,6 +108,7 @@ def main(argv):
                       % (pvd, len(times), ", ".join("%g" % t for t in times), expected))
 
     total_points = 0
+    changing_values = []  # the --changing array's values at each time step
     for t in times:
         reader.UpdatePipeline(t)
         data = servermanager.Fetch(reader)
@@ -110,6 +126,14 @@ def main(argv):
             if len(filled) != blocks:
                 errors.append("time %g: %d blocks with points (%s), expected %d"
                               % (t, len(filled), ", ".join(filled), blocks))
+        if changing is not None:
+            block = named_block(data, changing[0])
+            array = block.GetPointData().GetArray(changing[1]) if block is not None else None
+            if array is None:
+                errors.append("time %g: no block '%s' with a point array '%s' (blocks: %s)"
+                              % (t, changing[0], changing[1], ", ".join(p for p, _ in leaves(data))))
+            else:
+                changing_values.append([array.GetValue(i) for i in range(array.GetNumberOfValues())])
         fluid, where = fluid_block(data)
         if fluid is None or not hasattr(fluid, "GetPointData"):
             errors.append("time %g: no fluid data set in the %s (%s)"
@@ -126,6 +150,8 @@ def main(argv):
                 errors.append("time %g: fluid (%s) has no point array '%s' (has: %s)"
                               % (t, where, name, ", ".join(present)))
 
+    if changing is not None and len(changing_values) >= 2 and changing_values[0] == changing_values[-1]:
+        errors.append("%s of '%s' is the same at the last time step as at the first" % (changing[1], changing[0]))
     if errors:
         fail(errors)
     print("pvpython_check: OK: %s: %d time steps (%s), %d fluid points in all, arrays %s"

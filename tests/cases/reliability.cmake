@@ -18,3 +18,8 @@ add_test(NAME Reliability.FullDisk
 set_tests_properties(Reliability.FullDisk
   PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR};OMP_NUM_THREADS=1" TIMEOUT 300
   SKIP_RETURN_CODE 77)
+# kills and restarts of a case with a moving wall and leapfrog, bit for bit (a short soak)
+add_test(NAME Reliability.SoakQuick
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/soakQuick.sh $<TARGET_FILE:spindriftBench> ${PROJECT_SOURCE_DIR}/tutorials)
+set_tests_properties(Reliability.SoakQuick
+  PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR};OMP_NUM_THREADS=1" TIMEOUT 300)

@@ -109,8 +109,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         Simulation simulation(dir);
         const RunSummary summary = simulation.run();
         check(summary.steps >= 1);
-        for (const auto& x : simulation.scene().fluid.position()) check(x.allFinite());
-        for (const auto& v : simulation.scene().fluid.velocity()) check(v.allFinite());
+        for (const ParticleSystem* fluid : simulation.scene().ofRole(SystemRole::fluid)) {
+            for (const auto& x : fluid->particles.position()) check(x.allFinite());
+            for (const auto& v : fluid->particles.velocity()) check(v.allFinite());
+        }
     } catch (const InputError&) {
     } catch (const BlowUpError&) {
     }

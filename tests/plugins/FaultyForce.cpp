@@ -31,9 +31,11 @@ public:
         std::this_thread::sleep_for(std::chrono::duration<double>(setUpSeconds_));
     }
 
-    void addAcceleration(Scene& s, Scalar) override {
+    void addAcceleration(Scene& s, ParticleSystem&, const Step&) override {
         if (segfaultAfterStep_ >= 0 && s.step >= segfaultAfterStep_) *nowhere = 1;
     }
+
+    void addReactions(const Scene&, const ParticleSystem&, const Step&, Reactions&) const override {}
 
 private:
     long segfaultAfterStep_;

@@ -15,17 +15,17 @@ public:
     explicit OwnPressureBoundary(const ModelContext& c) : pressure_(c.dict.get<Scalar>("wallPressure")) {}
 
     void initialise(Scene& s) override {
-        for (WallSystem& w : s.walls) {
-            auto& mass = w.particles.addScalar("wallMass", {false, false});
-            std::fill(mass.begin(), mass.end(), s.fluid.particleMass());
-            w.mass = &mass;
-            w.pressureMirrored = false;
+        for (ParticleSystem* w : s.boundaries()) {
+            auto& mass = w->particles.addScalar("wallMass", {false, false});
+            std::fill(mass.begin(), mass.end(), s.constants.particleMass);
+            w->mass = &mass;
+            w->pressureMirrored = false;
         }
     }
-    void update(Scene& s) override {
-        for (WallSystem& w : s.walls) {
-            std::fill(w.particles.pressure().begin(), w.particles.pressure().end(), pressure_);
-            std::fill(w.particles.density().begin(), w.particles.density().end(), s.physics.rho0);
+    void update(Scene& s, const Step&) override {
+        for (ParticleSystem* w : s.boundaries()) {
+            std::fill(w->particles.pressure().begin(), w->particles.pressure().end(), pressure_);
+            std::fill(w->particles.density().begin(), w->particles.density().end(), s.constants.rho0);
         }
     }
 

@@ -22,7 +22,7 @@ namespace {
 class Flat final : public spindrift::Kernel {
 public:
     explicit Flat(const spindrift::ModelContext& c)
-        : Kernel(c.physics.supportRadius, c.physics.dimension)
+        : Kernel(c.constants.supportRadius, c.physics.dimension)
 #ifdef SPINDRIFT_TEST_CALLS_CORE
         , height_(c.dict.getOrDefault<spindrift::Vec3>("height", spindrift::Vec3::Ones()).x())
 #endif

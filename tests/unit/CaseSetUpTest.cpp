@@ -55,10 +55,10 @@ void setPressureSolver(const fs::path& dir, const std::string& type, double endT
 // The smallest distance between a fluid particle and any other particle (fluid or wall) of the scene.
 double closestToFluid(const Scene& s) {
     double closest = std::numeric_limits<double>::infinity();
-    const auto& x = s.fluid.position();
+    const auto& x = test::fluidOf(s).particles.position();
     for (std::size_t i = 0; i < x.size(); ++i) {
         for (std::size_t j = i + 1; j < x.size(); ++j) closest = std::min(closest, double((x[i] - x[j]).norm()));
-        for (const auto& w : s.walls)
+        for (const ParticleSystem& w : test::walls(s))
             for (const auto& y : w.particles.position()) closest = std::min(closest, double((x[i] - y).norm()));
     }
     return closest;
@@ -75,14 +75,14 @@ TEST(CaseSetUp, OverlappingFluidBlocksAreMergedAndReportedOnce) {
     std::size_t single = 0;
     {
         Simulation sim(tank(tmp, "single", water));
-        single = sim.scene().fluid.size();
+        single = test::fluidOf(sim.scene()).size();
     }
     ASSERT_EQ(single, 600u);
     const std::string copy = "    copy { type box; min (0 0 0); max (0.2 0.3 0); initialPressure hydrostatic; }\n";
     testing::internal::CaptureStdout();
     {
         Simulation sim(tank(tmp, "twice", water + copy));
-        EXPECT_EQ(sim.scene().fluid.size(), single) << "each position filled once";
+        EXPECT_EQ(test::fluidOf(sim.scene()).size(), single) << "each position filled once";
         EXPECT_GE(closestToFluid(sim.scene()), 0.999 * 0.01);
     }
     const std::string log = testing::internal::GetCapturedStdout();
@@ -95,7 +95,7 @@ TEST(CaseSetUp, OverlappingFluidBlocksAreMergedAndReportedOnce) {
     const std::string upper = "    upper { type box; min (0 0.1 0); max (0.2 0.35 0); }\n";
     {
         Simulation sim(tank(tmp, "partly", water + upper));
-        EXPECT_EQ(sim.scene().fluid.size(), 700u);
+        EXPECT_EQ(test::fluidOf(sim.scene()).size(), 700u);
         EXPECT_GE(closestToFluid(sim.scene()), 0.999 * 0.01);
     }
     // off the lattice (shifted 0.3 Δx): no two particles nearer than Δx
@@ -103,7 +103,7 @@ TEST(CaseSetUp, OverlappingFluidBlocksAreMergedAndReportedOnce) {
     {
         Simulation sim(tank(tmp, "shifted", water + shifted));
         EXPECT_GE(closestToFluid(sim.scene()), 0.999 * 0.01);
-        EXPECT_GT(sim.scene().fluid.size(), 600u);
+        EXPECT_GT(test::fluidOf(sim.scene()).size(), 600u);
     }
 }
 
@@ -114,8 +114,8 @@ TEST(CaseSetUp, StackedHydrostaticBlocksStartAsOneColumn) {
     test::TempDir tmp;
     const auto pressureByPosition = [](const Simulation& sim) {
         std::map<std::pair<long, long>, double> p;
-        const auto& x = const_cast<Simulation&>(sim).scene().fluid.position();
-        const auto& pressure = const_cast<Simulation&>(sim).scene().fluid.pressure();
+        const auto& x = test::fluidOf(sim.scene()).particles.position();
+        const auto& pressure = test::fluidOf(sim.scene()).particles.pressure();
         for (std::size_t i = 0; i < x.size(); ++i) p[{std::lround(x[i][0] * 1e4), std::lround(x[i][1] * 1e4)}] = pressure[i];
         return p;
     };
@@ -299,9 +299,7 @@ TEST(CaseSetUp, AMovingWallThatIsNotFiniteIsABlowUp) {
     control = std::regex_replace(control, std::regex("\nendTime[^;]*;"), "\nendTime 0.01;");
     std::ofstream(dir / "system/controlDict") << control;
     Simulation sim(dir);
-    WallSystem* paddle = nullptr;
-    for (auto& w : sim.scene().walls)
-        if (w.name() == "paddle") paddle = &w;
+    ParticleSystem* paddle = sim.scene().find("paddle");
     ASSERT_NE(paddle, nullptr);
     paddle->initialPosition[0][0] = std::numeric_limits<Scalar>::quiet_NaN();
     try {

@@ -219,6 +219,16 @@ TEST(CaseWriter, FieldSelection) {
     EXPECT_FALSE(contains(some, "smoothingLength"));
     EXPECT_FALSE(contains(some, "wallNormal"));
     EXPECT_FALSE(contains(some, "position"));
+
+    // Without restart fields (a wall's .vtp): only what is selected.
+    writeVtp(dir.path() / "view.vtp", set, {"pressure"}, false);
+    EXPECT_EQ(pointArrayNames(dir.path() / "view.vtp"), (std::vector<std::string>{"id", "pressure"}));
+    writeVtp(dir.path() / "viewAll.vtp", set, {}, false);
+    auto view = pointArrayNames(dir.path() / "viewAll.vtp");
+    EXPECT_TRUE(contains(view, "velocity"));
+    EXPECT_TRUE(contains(view, "wallNormal"));
+    EXPECT_FALSE(contains(view, "acceleration")) << "restart data only";
+    EXPECT_FALSE(contains(view, "restartOnly"));
 }
 
 TEST(CaseWriter, FieldOfWrongSizeIsSkipped) {
@@ -254,26 +264,30 @@ TEST(CaseWriter, WriteFailureNamesTheFile) {
     }
 }
 
-TEST(CaseWriter, TimesWithStaticBoundary) {
+// Every time directory holds every system the writer was given (a wall's pressure changes, and
+// a time directory is whole by itself); the .pvd points each block of a time at its own file.
+TEST(CaseWriter, TimesWithWalls) {
     TempDir dir("spindrift-casewriter");
     const fs::path caseDir = dir.path() / "damBreak";
     CaseWriter writer(caseDir);
     const ParticleSet fluid = randomSet(100, 11);
     const ParticleSet walls = randomSet(40, 12, "boundary");
     writer.write(0.0, fluid, {&walls});
-    writer.write(0.05, fluid, {});
-    writer.write(0.1 + 1e-17, fluid, {});
+    writer.write(0.05, fluid, {&walls});
+    writer.write(0.1 + 1e-17, fluid, {&walls});
 
     EXPECT_EQ(writer.collectionFile(), caseDir / "damBreak.pvd");
-    for (const char* t : {"0", "0.05", "0.1"})
+    for (const char* t : {"0", "0.05", "0.1"}) {
         EXPECT_TRUE(fs::is_regular_file(caseDir / t / "fluid.vtp")) << t;
-    EXPECT_TRUE(fs::is_regular_file(caseDir / "0" / "boundary.vtp"));
-    EXPECT_FALSE(fs::exists(caseDir / "0.05" / "boundary.vtp"));
+        EXPECT_TRUE(fs::is_regular_file(caseDir / t / "boundary.vtp")) << t;
+    }
     for (const auto& e : fs::directory_iterator(caseDir)) {
         const std::string name = e.path().filename().string();
         EXPECT_EQ(name.find(".tmp"), std::string::npos) << "leftover " << name;
+        EXPECT_EQ(name.find(".old"), std::string::npos) << "leftover " << name;
     }
     EXPECT_EQ(namesOf(writer.existingTimes()), (std::vector<std::string>{"0", "0.05", "0.1"}));
+    EXPECT_EQ(writer.timesWritten(), 3u);
 
     const auto entries = parsePvd(writer.collectionFile());
     ASSERT_EQ(entries.size(), 6u);
@@ -286,7 +300,7 @@ TEST(CaseWriter, TimesWithStaticBoundary) {
         } else {
             ++boundaryCount;
             EXPECT_EQ(e.part, "1");
-            EXPECT_EQ(e.file, "0/boundary.vtp");
+            EXPECT_EQ(e.file, e.timestep + "/boundary.vtp");
             EXPECT_EQ(e.name, "boundary");
         }
         EXPECT_TRUE(fs::is_regular_file(caseDir / e.file)) << e.file; // relative paths
@@ -305,51 +319,37 @@ TEST(CaseWriter, TimesWithStaticBoundary) {
     }
 }
 
-TEST(CaseWriter, BoundaryEntryPointsToNewestWallsAtOrBefore) {
-    TempDir dir("spindrift-casewriter");
-    const fs::path caseDir = dir.path() / "moving";
-    CaseWriter writer(caseDir);
-    const ParticleSet fluid = randomSet(10, 1);
-    const ParticleSet walls = randomSet(5, 2, "boundary");
-    writer.write(0.0, fluid, {}); // no walls yet
-    writer.write(1.0, fluid, {&walls});
-    writer.write(2.0, fluid, {});
-    writer.write(3.0, fluid, {&walls});
-    writer.write(4.0, fluid, {});
-    std::vector<std::string> boundaryFiles;
-    for (const auto& e : parsePvd(writer.collectionFile()))
-        if (e.part == "1") boundaryFiles.push_back(e.timestep + "->" + e.file);
-    EXPECT_EQ(boundaryFiles, (std::vector<std::string>{"1->1/boundary.vtp", "2->1/boundary.vtp",
-                                                       "3->3/boundary.vtp", "4->3/boundary.vtp"}));
-}
-
-// A fixed wall written once and a moving wall written at every time: a part each, the fixed
-// one pointing to its first file, the moving one to each time's own.
-TEST(CaseWriter, OneBlockPerWallSystem) {
+// A wall is listed at the times that hold it, under one part number throughout (a wall added or
+// taken out at a restart: issue 33, item 7).
+TEST(CaseWriter, EachTimeListsTheSystemsItHolds) {
     TempDir dir("spindrift-casewriter");
     const fs::path caseDir = dir.path() / "paddle";
     CaseWriter writer(caseDir);
     const ParticleSet fluid = randomSet(10, 1);
     const ParticleSet tank = randomSet(5, 2, "tank"), paddle = randomSet(4, 3, "paddle");
-    writer.write(0.0, fluid, {&tank, &paddle});
-    writer.write(0.5, fluid, {&paddle});
+    writer.write(0.0, fluid, {&tank});
+    writer.write(0.5, fluid, {&tank, &paddle});
     writer.write(1.0, fluid, {&paddle});
     std::vector<std::string> parts;
     for (const auto& e : parsePvd(writer.collectionFile())) {
         parts.push_back(e.timestep + " " + e.part + " " + e.name + " " + e.file);
         EXPECT_TRUE(fs::is_regular_file(caseDir / e.file)) << e.file;
     }
-    EXPECT_EQ(parts, (std::vector<std::string>{
-                         "0 0 fluid 0/fluid.vtp", "0 1 paddle 0/paddle.vtp", "0 2 tank 0/tank.vtp",
-                         "0.5 0 fluid 0.5/fluid.vtp", "0.5 1 paddle 0.5/paddle.vtp", "0.5 2 tank 0/tank.vtp",
-                         "1 0 fluid 1/fluid.vtp", "1 1 paddle 1/paddle.vtp", "1 2 tank 0/tank.vtp"}));
-    // a restart scans the same blocks back
+    EXPECT_EQ(parts, (std::vector<std::string>{"0 0 fluid 0/fluid.vtp", "0 2 tank 0/tank.vtp",
+                                               "0.5 0 fluid 0.5/fluid.vtp", "0.5 1 paddle 0.5/paddle.vtp",
+                                               "0.5 2 tank 0.5/tank.vtp", "1 0 fluid 1/fluid.vtp",
+                                               "1 1 paddle 1/paddle.vtp"}));
+    // a restart from the newest time scans the same blocks back
     CaseWriter again(caseDir);
-    again.rebuildCollection();
-    EXPECT_EQ(parsePvd(again.collectionFile()).size(), parts.size());
+    again.beginRun(1.0, "1");
+    std::vector<std::string> scanned;
+    for (const auto& e : parsePvd(again.collectionFile())) scanned.push_back(e.timestep + " " + e.part + " " + e.name + " " + e.file);
+    EXPECT_EQ(scanned, parts);
 }
 
-TEST(CaseWriter, ExistingTimesIgnoresIncompleteHiddenAndNonNumeric) {
+// Only canonical names of times (what timeName gives at some precision), not before the
+// earliest time, are times (issue 33, item 4: " 0.025", "0x1p-6" and "-1" were listed).
+TEST(CaseWriter, ExistingTimesIgnoresIncompleteHiddenAndNonCanonical) {
     TempDir dir("spindrift-casewriter");
     const fs::path caseDir = dir.path() / "c";
     CaseWriter writer(caseDir);
@@ -360,20 +360,27 @@ TEST(CaseWriter, ExistingTimesIgnoresIncompleteHiddenAndNonNumeric) {
     writer.write(10.0, fluid, {});
     writer.write(2.0, fluid, {});
 
-    fs::create_directories(caseDir / ".0.2.tmp");
-    fs::copy_file(caseDir / "0" / "fluid.vtp", caseDir / ".0.2.tmp" / "fluid.vtp");
-    fs::create_directories(caseDir / "0.3");                   // incomplete
-    fs::create_directories(caseDir / "constant");              // not a time
-    fs::copy_file(caseDir / "0" / "fluid.vtp", caseDir / "constant" / "fluid.vtp");
-    fs::create_directories(caseDir / "0.4abc");                // not fully numeric
-    fs::copy_file(caseDir / "0" / "fluid.vtp", caseDir / "0.4abc" / "fluid.vtp");
+    const auto timeLike = [&](const std::string& name) {
+        fs::create_directories(caseDir / name);
+        fs::copy_file(caseDir / "0" / "fluid.vtp", caseDir / name / "fluid.vtp");
+    };
+    timeLike(".0.2.tmp");
+    fs::create_directories(caseDir / "0.3"); // incomplete
+    for (const char* name : {"constant", "0.4abc", " 0.025", "0x1p-6", "-1", "0.0250", "+1", "1e1", "inf", "nan"})
+        timeLike(name);
     std::ofstream(caseDir / "5") << "a file, not a directory";
+    fs::create_directory_symlink(caseDir / "nowhere", caseDir / "7"); // dangling
 
     const auto times = writer.existingTimes();
     EXPECT_EQ(namesOf(times), (std::vector<std::string>{"0", "1e-05", "0.1", "2", "10"}));
     ASSERT_EQ(times.size(), 5u);
     EXPECT_EQ(times[1].first, 1e-05);
     EXPECT_EQ(times[4].first, 10.0);
+    double value = 0;
+    EXPECT_TRUE(writer.isTimeName("0.025", value));
+    EXPECT_EQ(value, 0.025);
+    EXPECT_FALSE(writer.isTimeName("-1", value));
+    EXPECT_TRUE(CaseWriter(caseDir, 6, -2).isTimeName("-1", value)) << "a case that starts at -2 has time -1";
 
     // The collection is sorted by value too.
     std::vector<std::string> listed;
@@ -381,7 +388,9 @@ TEST(CaseWriter, ExistingTimesIgnoresIncompleteHiddenAndNonNumeric) {
     EXPECT_EQ(listed, (std::vector<std::string>{"0", "1e-05", "0.1", "2", "10"}));
 }
 
-TEST(CaseWriter, RebuildCollectionAfterDeletingATime) {
+// A restart continues the complete times up to the one it restarts from: a time deleted meanwhile
+// is not listed, one left half-written (.1.5.tmp) is replaced by the new write.
+TEST(CaseWriter, ARestartListsTheContinuedTimesPresent) {
     TempDir dir("spindrift-casewriter");
     const fs::path caseDir = dir.path() / "c";
     const ParticleSet fluid = randomSet(10, 5);
@@ -389,28 +398,81 @@ TEST(CaseWriter, RebuildCollectionAfterDeletingATime) {
     {
         CaseWriter writer(caseDir);
         writer.write(0.0, fluid, {&walls});
-        writer.write(0.5, fluid, {});
-        writer.write(1.0, fluid, {});
+        writer.write(0.5, fluid, {&walls});
+        writer.write(1.0, fluid, {&walls});
     }
     fs::remove_all(caseDir / "0.5");
     fs::create_directories(caseDir / ".1.5.tmp"); // as left by a crash
 
     CaseWriter writer(caseDir); // a new run (restart)
-    writer.rebuildCollection();
+    const auto start = writer.beginRun(1.0, "1");
+    EXPECT_TRUE(start.movedAside.empty());
     const auto entries = parsePvd(writer.collectionFile());
     ASSERT_EQ(entries.size(), 4u);
     EXPECT_EQ(entries[0].file, "0/fluid.vtp");
     EXPECT_EQ(entries[1].file, "0/boundary.vtp");
     EXPECT_EQ(entries[2].file, "1/fluid.vtp");
-    EXPECT_EQ(entries[3].file, "0/boundary.vtp");
+    EXPECT_EQ(entries[3].file, "1/boundary.vtp");
 
-    // Continuing the run keeps pointing at the walls found at start-up.
-    writer.write(1.5, fluid, {});
+    writer.write(1.5, fluid, {&walls});
     EXPECT_FALSE(fs::exists(caseDir / ".1.5.tmp"));
     const auto after = parsePvd(writer.collectionFile());
     ASSERT_EQ(after.size(), 6u);
     EXPECT_EQ(after[4].file, "1.5/fluid.vtp");
-    EXPECT_EQ(after[5].file, "0/boundary.vtp");
+    EXPECT_EQ(after[5].file, "1.5/boundary.vtp");
+    EXPECT_EQ(writer.timesWritten(), 1u) << "this run's";
+}
+
+// A run from startTime owns the case's times (issue 33, item 4): every entry named as a time from
+// startTime on — an earlier run's results, a dangling link — goes to previousRun/ (replacing the
+// one of an earlier start) and the .pvd lists nothing of them; earlier times stay, unlisted; a
+// restart moves the times after the one it continues. Names that are not times stay.
+TEST(CaseWriter, AFreshRunMovesTheLaterTimesAside) {
+    TempDir dir("spindrift-casewriter");
+    const fs::path caseDir = dir.path() / "c";
+    const ParticleSet fluid = randomSet(10, 5);
+    const auto earlierRun = [&](std::initializer_list<double> times) {
+        CaseWriter writer(caseDir);
+        for (double t : times) writer.write(t, fluid, {});
+    };
+    earlierRun({0, 0.01, 0.02, 0.03});
+    fs::create_directory_symlink(caseDir / "nowhere", caseDir / "0.04");
+    fs::create_directories(caseDir / " 0.025");
+    {
+        CaseWriter writer(caseDir);
+        const auto start = writer.beginRun(0.02);
+        EXPECT_EQ(start.movedAside, (std::vector<std::string>{"0.02", "0.03", "0.04"}));
+        EXPECT_EQ(start.notListed, (std::vector<std::string>{"0", "0.01"}));
+        EXPECT_FALSE(start.replacedPreviousRun);
+        EXPECT_TRUE(parsePvd(writer.collectionFile()).empty());
+        EXPECT_TRUE(fs::is_regular_file(caseDir / "previousRun/0.03/fluid.vtp"));
+        EXPECT_TRUE(fs::is_symlink(caseDir / "previousRun/0.04"));
+        EXPECT_TRUE(fs::is_directory(caseDir / " 0.025")) << "not a time: left alone";
+        writer.write(0.02, fluid, {});
+        std::vector<std::string> files;
+        for (const auto& e : parsePvd(writer.collectionFile())) files.push_back(e.file);
+        EXPECT_EQ(files, (std::vector<std::string>{"0.02/fluid.vtp"}));
+    }
+    // a second fresh start replaces previousRun/
+    {
+        CaseWriter writer(caseDir);
+        const auto start = writer.beginRun(0);
+        EXPECT_EQ(start.movedAside, (std::vector<std::string>{"0", "0.01", "0.02"}));
+        EXPECT_TRUE(start.replacedPreviousRun);
+        EXPECT_FALSE(fs::exists(caseDir / "previousRun/0.03"));
+        EXPECT_TRUE(fs::exists(caseDir / "previousRun/0.02"));
+    }
+    // a restart continues 0.01 and moves what is after it
+    earlierRun({0, 0.01, 0.02});
+    {
+        CaseWriter writer(caseDir);
+        const auto start = writer.beginRun(0.01 + 1e-17, "0.01");
+        EXPECT_EQ(start.movedAside, (std::vector<std::string>{"0.02"}));
+        EXPECT_TRUE(start.notListed.empty());
+        std::vector<std::string> files;
+        for (const auto& e : parsePvd(writer.collectionFile())) files.push_back(e.file);
+        EXPECT_EQ(files, (std::vector<std::string>{"0/fluid.vtp", "0.01/fluid.vtp"}));
+    }
 }
 
 TEST(CaseWriter, WritingTheSameTimeTwiceReplacesIt) {
@@ -419,18 +481,33 @@ TEST(CaseWriter, WritingTheSameTimeTwiceReplacesIt) {
     CaseWriter writer(caseDir);
     const ParticleSet walls = randomSet(5, 6, "boundary");
     writer.write(0.0, randomSet(10, 1), {&walls});
-    writer.write(0.25, randomSet(10, 1), {});
+    writer.write(0.25, randomSet(10, 1), {&walls});
     std::ofstream(caseDir / "0.25" / "stale.txt") << "from the first write";
     writer.write(0.25, randomSet(20, 2), {});
     EXPECT_EQ(readVtp(caseDir / "0.25" / "fluid.vtp").size(), 20u);
     EXPECT_FALSE(fs::exists(caseDir / "0.25" / "stale.txt"));
-    EXPECT_EQ(parsePvd(writer.collectionFile()).size(), 4u);
+    EXPECT_FALSE(fs::exists(caseDir / "0.25" / "boundary.vtp")) << "the time is what the last write gave";
+    EXPECT_FALSE(fs::exists(caseDir / ".0.25.old"));
+    EXPECT_EQ(parsePvd(writer.collectionFile()).size(), 3u);
+    EXPECT_EQ(writer.timesWritten(), 2u);
+}
 
-    // Rewriting the time holding the static walls without walls keeps them.
-    writer.write(0.0, randomSet(30, 3), {});
-    EXPECT_EQ(readVtp(caseDir / "0" / "fluid.vtp").size(), 30u);
-    EXPECT_EQ(readVtp(caseDir / "0" / "boundary.vtp").size(), 5u);
-    EXPECT_EQ(parsePvd(writer.collectionFile()).size(), 4u);
+// A name taken by a dangling link or a file (issue 33, item 21: "cannot rename: Not a
+// directory") is replaced by the time written.
+TEST(CaseWriter, WritesOverADanglingLinkOrAFile) {
+    TempDir dir("spindrift-casewriter");
+    const fs::path caseDir = dir.path() / "c";
+    fs::create_directories(caseDir);
+    fs::create_directory_symlink(caseDir / "nowhere", caseDir / "0.01");
+    std::ofstream(caseDir / "0.02") << "a file";
+    CaseWriter writer(caseDir);
+    writer.write(0.01, randomSet(10, 1), {});
+    writer.write(0.02, randomSet(10, 1), {});
+    EXPECT_TRUE(fs::is_directory(fs::symlink_status(caseDir / "0.01")));
+    EXPECT_EQ(readVtp(caseDir / "0.01" / "fluid.vtp").size(), 10u);
+    EXPECT_EQ(readVtp(caseDir / "0.02" / "fluid.vtp").size(), 10u);
+    EXPECT_FALSE(fs::exists(fs::symlink_status(caseDir / ".0.01.old")));
+    EXPECT_FALSE(fs::exists(caseDir / ".0.02.old"));
 }
 
 TEST(CaseWriter, CollectionNameFromDotOrTrailingSlash) {
@@ -489,10 +566,12 @@ TEST(CaseWriter, RemovesTheTimesItWroteAfterAGivenTime) {
     CaseWriter writer(caseDir);
     const ParticleSet walls = randomSet(5, 6, "boundary");
     writer.write(0.0, randomSet(10, 1), {&walls});
-    writer.write(0.5, randomSet(10, 1), {});
-    writer.write(1.0, randomSet(10, 1), {});
-    writer.write(1.5, randomSet(10, 1), {});
+    writer.write(0.5, randomSet(10, 1), {&walls});
+    writer.write(1.0, randomSet(10, 1), {&walls});
+    writer.write(1.5, randomSet(10, 1), {&walls});
+    EXPECT_EQ(writer.timesWritten(), 4u);
     EXPECT_EQ(writer.removeTimesWrittenAfter(0.5), (std::vector<std::string>{"1", "1.5"}));
+    EXPECT_EQ(writer.timesWritten(), 2u);
     EXPECT_TRUE(fs::exists(caseDir / "0.5"));
     EXPECT_FALSE(fs::exists(caseDir / "1"));
     EXPECT_FALSE(fs::exists(caseDir / "1.5"));
@@ -500,7 +579,6 @@ TEST(CaseWriter, RemovesTheTimesItWroteAfterAGivenTime) {
     EXPECT_TRUE(fs::exists(caseDir / "5")) << "not written by this writer";
     std::vector<std::string> files;
     for (const auto& e : parsePvd(writer.collectionFile())) files.push_back(e.file);
-    EXPECT_EQ(files, (std::vector<std::string>{"0/fluid.vtp", "0/boundary.vtp", "0.5/fluid.vtp", "0/boundary.vtp",
-                                               "5/fluid.vtp", "0/boundary.vtp"}));
+    EXPECT_EQ(files, (std::vector<std::string>{"0/fluid.vtp", "0/boundary.vtp", "0.5/fluid.vtp", "0.5/boundary.vtp"}));
     EXPECT_TRUE(writer.removeTimesWrittenAfter(0.5).empty());
 }

@@ -8,7 +8,9 @@
 //               Galilean invariance: a uniform velocity added to every particle changes no
 //               acceleration;
 //   integrator  the global order of accuracy it declares (Integrator::order) on a harmonic
-//               oscillator: the error at T = 1 falls by 2^order when Δt is halved;
+//               oscillator: the error at T = 1 falls by 2^order when Δt is halved; it advances
+//               an integrated density once a step through the core, and moves the particles
+//               with the core's drift (a shifting model's transport velocity included);
 //   pressure    a small 2D water column in a tank (the hydrostaticTank2D tutorial, narrowed
 //               and lowered) stays at rest, its density near ρ0 and its bottom-row pressure
 //               near ρ0 g (H − z), with each solver's defaults; the bounds are per solver (what
@@ -216,18 +218,18 @@ struct ViscosityScene {
         s.constants.soundSpeed = 20;
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-1, 1);
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-            s.fluid.position()[i] += 0.1 * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
-            s.fluid.velocity()[i] = Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+            test::fluidOf(s).particles.position()[i] += 0.1 * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
+            test::fluidOf(s).particles.velocity()[i] = Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
         }
-        s.search.build(s.fluid.position());
-        test::createModel<PressureModel>("type wcsph; soundSpeed 20;", s.physics)->computeDensity(s);
+        test::rebuild(s);
+        test::createModel<PressureModel>("type wcsph; soundSpeed 20;", s.physics)->computeDensity(s, test::fluidOf(s), test::stepOf(s));
     }
     // the model's accelerations alone, at the current velocities
     std::vector<Vec3> accelerations(ViscosityModel& model, double dt = 1e-4) {
-        for (auto& a : s.fluid.acceleration()) a.setZero();
-        model.addAcceleration(s, Scalar(dt));
-        return s.fluid.acceleration();
+        for (auto& a : test::fluidOf(s).particles.acceleration()) a.setZero();
+        model.addAcceleration(s, test::fluidOf(s), test::stepOf(s, Scalar(dt)));
+        return test::fluidOf(s).particles.acceleration();
     }
 };
 
@@ -252,7 +254,7 @@ TEST_P(ViscosityContract, ConservesMomentumAndDissipatesEnergy) {
         for (std::size_t i = 0; i < a.size(); ++i) {
             total += a[i];
             scale += a[i].norm();
-            power += sc.s.fluid.velocity()[i].dot(a[i]);
+            power += test::fluidOf(sc.s).particles.velocity()[i].dot(a[i]);
         }
         EXPECT_GT(scale, 0.0) << dim << "D";
         // float: the round-off of ~30-term pair sums
@@ -269,7 +271,7 @@ TEST_P(ViscosityContract, GalileanInvariant) {
         auto model = make(sc);
         const auto a = sc.accelerations(*model);
         const Vec3 U = dim == 2 ? Vec3(1.5, -0.5, 0) : Vec3(1.5, -0.5, 0.8);
-        for (auto& v : sc.s.fluid.velocity()) v += U;
+        for (auto& v : test::fluidOf(sc.s).particles.velocity()) v += U;
         auto moving = make(sc);
         const auto b = sc.accelerations(*moving);
         double worst = 0, scale = 0;
@@ -281,7 +283,7 @@ TEST_P(ViscosityContract, GalileanInvariant) {
         // float: v_i − v_j of velocities ~2 m/s rounded to float, relative to ~1 m/s differences
         EXPECT_LT(worst, test::tol(1e-12, 64 * test::eps) * scale) << dim << "D";
         // a uniform translation alone feels nothing
-        for (auto& v : sc.s.fluid.velocity()) v = U;
+        for (auto& v : test::fluidOf(sc.s).particles.velocity()) v = U;
         auto uniform = make(sc);
         for (const auto& c : sc.accelerations(*uniform)) ASSERT_EQ(c, Vec3::Zero()) << dim << "D";
     }
@@ -299,16 +301,16 @@ double oscillatorError(const std::string& integrator, double dt) {
     const double omega = 2.0, T = 1.0;
     Scene s;
     s.physics = test::physicsFor(3);
-    s.fluid.resize(1);
-    s.fluid.position()[0] = Vec3(1, 0, 0);
-    s.fluid.velocity()[0] = Vec3(0, omega, 0);
+    test::fluidOf(s).particles.resize(1);
+    test::fluidOf(s).particles.position()[0] = Vec3(1, 0, 0);
+    test::fluidOf(s).particles.velocity()[0] = Vec3(0, omega, 0);
     auto model = test::createModel<Integrator>("type " + integrator + ";", s.physics);
     model->initialise(s);
-    const auto evaluate = [&](double) { s.fluid.acceleration()[0] = -omega * omega * s.fluid.position()[0]; };
+    const auto evaluate = [&](double, Scalar) { test::fluidOf(s).particles.acceleration()[0] = -omega * omega * test::fluidOf(s).particles.position()[0]; };
     const long steps = std::lround(T / dt);
-    for (long n = 0; n < steps; ++n) model->step(s, Scalar(dt), evaluate);
+    for (long n = 0; n < steps; ++n) model->step(s, test::noServices(), Scalar(dt), evaluate);
     const Vec3 x(std::cos(omega * T), std::sin(omega * T), 0), v(-omega * std::sin(omega * T), omega * std::cos(omega * T), 0);
-    return (s.fluid.position()[0] - x).norm() + (s.fluid.velocity()[0] - v).norm() / omega;
+    return (test::fluidOf(s).particles.position()[0] - x).norm() + (test::fluidOf(s).particles.velocity()[0] - v).norm() / omega;
 }
 
 class IntegratorContract : public testing::TestWithParam<std::string> {};
@@ -324,6 +326,63 @@ TEST_P(IntegratorContract, ReachesItsOrderOnAHarmonicOscillator) {
               << "; observed orders " << first << ", " << second << "\n";
     EXPECT_NEAR(first, order, 0.15);
     EXPECT_NEAR(second, order, 0.15);
+}
+
+// Services that give the density a known rate and count how often an integrator asks the core
+// to advance it, and whose drift is the core's with a shifting model (the fluid's field
+// shiftingVelocity is added to the velocity the particles move with).
+class RecordingServices final : public StepServices {
+public:
+    bool boundariesHaveOwnPressure(const Scene&) const override { return false; }
+    void updateBoundaryPressure(Scene&, const ParticleSystem&, const std::vector<Scalar>&) const override {}
+    void drift(const Scene& s, const ParticleSystem& f, Scalar dt, const std::vector<Vec3>& v, std::vector<Vec3>& x) const override {
+        core_.drift(s, f, dt, v, x);
+    }
+    void wrap(const Scene& s, const ParticleSystem& f, std::vector<Vec3>& x) const override { core_.wrap(s, f, x); }
+    bool integratesDensity(const ParticleSystem&) const override { return true; }
+    void advanceDensity(Scene&, ParticleSystem& f, Scalar dt) const override {
+        for (auto& rho : f.particles.density()) rho += dt * rate;
+        ++calls;
+    }
+    static constexpr Scalar rate = 10; // dρ/dt [kg/m³/s]
+    mutable int calls = 0;
+
+private:
+    CoreServices core_{CoreServices::Models{nullptr, nullptr, nullptr, true}};
+};
+
+// Every integrator advances an integrated density once a step, through the core (with the rate
+// the core gives), and moves the particles with the core's drift, shifting velocity included: a
+// particle under no force with velocity v and shift δv goes v + δv.
+TEST_P(IntegratorContract, AdvancesTheIntegratedDensityAndAppliesTheShiftingVelocity) {
+    Scene s;
+    s.physics = test::physicsFor(3);
+    ParticleSystem& fluid = test::addFluid(s, 2);
+    fluid.particles.addVector("shiftingVelocity", {false, true});
+    auto model = test::createModel<Integrator>("type " + GetParam() + ";", s.physics);
+    model->initialise(s);
+    const Vec3 v0(0.5, 0, 0), shift(0, 0.25, 0);
+    auto& set = fluid.particles;
+    set.position() = {Vec3::Zero(), Vec3(1, 1, 1)};
+    set.velocity() = {v0, v0};
+    (*set.findVector("shiftingVelocity")) = {shift, shift};
+    RecordingServices core;
+    const auto evaluate = [&](double, Scalar) {
+        for (auto& a : set.acceleration()) a.setZero();
+    };
+    const int steps = 40;
+    const double dt = 0.01;
+    for (int n = 0; n < steps; ++n) {
+        model->step(s, core, Scalar(dt), evaluate);
+        s.time += dt;
+        ++s.step;
+    }
+    EXPECT_EQ(core.calls, steps) << "once a step for the one fluid";
+    EXPECT_NEAR(set.density()[0], 1000 + steps * dt * RecordingServices::rate, test::tol(1e-9, 1e-3));
+    const Vec3 expected = Vec3(1, 1, 1) + steps * dt * (v0 + shift);
+    EXPECT_LT((set.position()[1] - expected).norm(), test::tol(1e-12, 1e-5))
+        << "x = (" << set.position()[1].transpose() << "), expected (" << expected.transpose() << ")";
+    EXPECT_LT((set.velocity()[1] - v0).norm(), test::tol(1e-12, 1e-6)) << "the shift moves, it does not accelerate";
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, IntegratorContract, testing::ValuesIn(available("integrator")),
@@ -408,17 +467,17 @@ ColumnResult hydrostaticColumn(const std::string& pressure) {
     double pSum = 0, zSum = 0;
     long count = 0;
     for (int step = 0; step < 50; ++step) {
-        auto& x = s.fluid.position();
-        auto& v = s.fluid.velocity();
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) { // symplectic Euler: every result kind
-            v[i] += dt * s.fluid.acceleration()[i];
+        auto& x = test::fluidOf(s).particles.position();
+        auto& v = test::fluidOf(s).particles.velocity();
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) { // symplectic Euler: every result kind
+            v[i] += dt * test::fluidOf(s).particles.acceleration()[i];
             x[i] += dt * v[i];
         }
         s.time += dt;
         sim.evaluate(s.time, dt);
-        for (std::size_t i = 0; i < s.fluid.size(); ++i)
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i)
             if (x[i].y() < dx) {
-                pSum += s.fluid.pressure()[i];
+                pSum += test::fluidOf(s).particles.pressure()[i];
                 zSum += x[i].y();
                 ++count;
             }
@@ -428,15 +487,15 @@ ColumnResult hydrostaticColumn(const std::string& pressure) {
     out.pHydrostatic = rho0 * g * (H - zSum / count);
     out.bottomError = (out.pBottom - out.pHydrostatic) / (rho0 * g * H);
     double v2 = 0, top = 0;
-    for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-        const Vec3 x = s.fluid.position()[i];
+    for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+        const Vec3 x = test::fluidOf(s).particles.position()[i];
         out.penetration = std::max<double>(out.penetration, std::max<double>({-x.x(), x.x() - width, -x.y()}) / dx);
         top = std::max<double>(top, x.y());
-        out.maxDensityError = std::max(out.maxDensityError, double(s.fluid.density()[i] - rho0) / rho0);
-        v2 += s.fluid.velocity()[i].squaredNorm();
-        out.maxSpeed = std::max(out.maxSpeed, double(s.fluid.velocity()[i].norm()));
+        out.maxDensityError = std::max(out.maxDensityError, double(test::fluidOf(s).particles.density()[i] - rho0) / rho0);
+        v2 += test::fluidOf(s).particles.velocity()[i].squaredNorm();
+        out.maxSpeed = std::max(out.maxSpeed, double(test::fluidOf(s).particles.velocity()[i].norm()));
     }
-    out.rmsSpeed = std::sqrt(v2 / s.fluid.size());
+    out.rmsSpeed = std::sqrt(v2 / test::fluidOf(s).particles.size());
     out.aboveSurface = (top - H) / dx;
     return out;
 }

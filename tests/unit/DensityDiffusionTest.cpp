@@ -32,21 +32,22 @@ struct DiffusionScene {
         Periodicity periodic;
         periodic.axis[0] = periodic.axis[1] = true;
         periodic.length = Vec3(n * dx, n * dx, 0);
-        const Scalar margin = 4 * s.physics.supportRadius;
-        s.search.setup(s.physics.supportRadius, 2, Vec3(-margin, -margin, 0), Vec3(n * dx + margin, n * dx + margin, 0),
+        const Scalar margin = 4 * s.constants.supportRadius;
+        s.search.setup(s.constants.supportRadius, 2, Vec3(-margin, -margin, 0), Vec3(n * dx + margin, n * dx + margin, 0),
                        periodic);
-        s.search.build(s.fluid.position());
+        s.registerWithSearch(test::fluidOf(s));
+        test::rebuild(s);
         s.physics.gravity = Vec3::Zero(); // no hydrostatic part: the three forms agree in sign
-        s.fluid.density().assign(s.fluid.size(), Scalar(rho0));
+        test::fluidOf(s).particles.density().assign(test::fluidOf(s).particles.size(), Scalar(rho0));
     }
     std::vector<Scalar> rate(const std::string& type) {
         dict = std::make_unique<Dictionary>(Dictionary::fromString("type " + type + "; delta 0.1;", "sphSchemes.densityDiffusion"));
-        auto model = ModelRegistry::instance().create<DensityDiffusion>(*dict, s.physics);
+        auto model = ModelRegistry::instance().create<DensityDiffusion>(*dict, s.physics, s.constants);
         model->initialise(s);
         // the particles are at rest (for the callers that do not move them): the continuity
         // equation's part of the rate is zero, what remains is the diffusion
         std::vector<Scalar> r;
-        model->densityRate(s, r);
+        model->densityRate(s, test::fluidOf(s), r);
         return r;
     }
 };
@@ -61,15 +62,15 @@ TEST_P(EveryDensityDiffusion, UniformDensityHasNothingToDiffuse) {
 TEST_P(EveryDensityDiffusion, ASpikeLosesDensityToItsNeighboursAndNoMassIsMade) {
     DiffusionScene sc;
     const std::size_t spike = (n / 2) * n + n / 2;
-    sc.s.fluid.density()[spike] = Scalar(1.01 * rho0);
+    test::fluidOf(sc.s).particles.density()[spike] = Scalar(1.01 * rho0);
     const auto r = sc.rate(GetParam());
     EXPECT_LT(r[spike], 0) << GetParam();
     double gained = 0, volumeWeighted = 0, scale = 0;
-    const Scalar m = sc.s.fluid.particleMass();
+    const Scalar m = test::fluidOf(sc.s).particles.particleMass();
     for (std::size_t i = 0; i < r.size(); ++i) {
         if (i != spike) gained += r[i];
-        volumeWeighted += m / sc.s.fluid.density()[i] * r[i];
-        scale += std::abs(m / sc.s.fluid.density()[i] * r[i]);
+        volumeWeighted += m / test::fluidOf(sc.s).particles.density()[i] * r[i];
+        scale += std::abs(m / test::fluidOf(sc.s).particles.density()[i] * r[i]);
     }
     EXPECT_GT(gained, 0) << "the neighbours gain density";
     EXPECT_LT(std::abs(volumeWeighted), test::tol(1e-9, 1e-4) * scale) << "sum of V_i D_i";
@@ -79,18 +80,18 @@ TEST_P(EveryDensityDiffusion, ASpikeLosesDensityToItsNeighboursAndNoMassIsMade) 
 // particles moving, it is the continuity equation's rate plus the rate of the same density at rest.
 TEST_P(EveryDensityDiffusion, AddsItsTermToTheContinuityEquationInOnePass) {
     DiffusionScene sc;
-    auto& rho = sc.s.fluid.density();
+    auto& rho = test::fluidOf(sc.s).particles.density();
     for (std::size_t i = 0; i < rho.size(); ++i) rho[i] = Scalar(rho0 * (1 + 0.01 * std::sin(0.7 * double(i))));
     const auto atRest = sc.rate(GetParam());
-    auto& v = sc.s.fluid.velocity();
+    auto& v = test::fluidOf(sc.s).particles.velocity();
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = Vec3(std::cos(1.3 * double(i)), std::sin(0.4 * double(i)), 0);
     std::vector<Scalar> continuity, moving;
-    continuityDensityRate(sc.s, continuity);
+    continuityDensityRate(sc.s, test::fluidOf(sc.s), continuity);
     sc.dict = std::make_unique<Dictionary>(Dictionary::fromString("type " + std::string(GetParam()) + "; delta 0.1;",
                                                                   "sphSchemes.densityDiffusion"));
-    auto model = ModelRegistry::instance().create<DensityDiffusion>(*sc.dict, sc.s.physics);
+    auto model = ModelRegistry::instance().create<DensityDiffusion>(*sc.dict, sc.s.physics, sc.s.constants);
     model->initialise(sc.s);
-    model->densityRate(sc.s, moving);
+    model->densityRate(sc.s, test::fluidOf(sc.s), moving);
     double scale = 0;
     for (std::size_t i = 0; i < rho.size(); ++i) scale = std::max(scale, std::abs(double(continuity[i])));
     ASSERT_GT(scale, 0);

@@ -27,7 +27,7 @@ struct TestScene {
     }
     std::unique_ptr<FunctionObject> create(const std::string& name, const std::string& text) {
         dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(text, "controlDict.functions." + name)));
-        return ModelRegistry::instance().create<FunctionObject>(*dicts.back(), s.physics, nullptr, dir.path(), name);
+        return ModelRegistry::instance().create<FunctionObject>(*dicts.back(), s.physics, s.constants, nullptr, dir.path(), name);
     }
     // rows of postProcessing/<name>/0/<file>.dat
     std::vector<std::vector<double>> rows(const std::string& name, std::string* header = nullptr,
@@ -53,10 +53,10 @@ struct TestScene {
 
 TEST(Probes, ShepardInterpolationIsExactForConstantsAndAccurateForLinearFields) {
     TestScene sc(20, 20, Vec3::Zero());
-    auto& x = sc.s.fluid.position();
+    auto& x = test::fluidOf(sc.s).particles.position();
     for (std::size_t i = 0; i < x.size(); ++i) {
-        sc.s.fluid.pressure()[i] = 1000 + 500 * x[i][0] - 300 * x[i][1]; // linear
-        sc.s.fluid.velocity()[i] = Vec3(2, -1, 0);                          // constant
+        test::fluidOf(sc.s).particles.pressure()[i] = 1000 + 500 * x[i][0] - 300 * x[i][1]; // linear
+        test::fluidOf(sc.s).particles.velocity()[i] = Vec3(2, -1, 0);                          // constant
     }
     auto probes = sc.create("p", "type probes; fields (pressure velocity density); "
                                  "probeLocations ((0.1037 0.0871 0) (0.0049 0.1 0) (1 1 0));");
@@ -131,12 +131,12 @@ TEST(Probes, UnknownFieldIsAnInputErrorNamingTheCaseFields) {
 
 TEST(SurgeFront, FurthestParticleNearTheFloorWithEnoughNeighbours) {
     TestScene sc(10, 20); // x < 0.1, y < 0.2
-    auto& x = sc.s.fluid.position();
+    auto& x = test::fluidOf(sc.s).particles.position();
     // a particle of the top row moved far ahead (above the floor band), and an isolated drop on
     // the floor further still
     x[x.size() - 1] = Vec3(0.3, 0.15, 0);
     x[0] = Vec3(0.5, 0.005, 0);
-    sc.s.search.build(x);
+    test::rebuild(sc.s);
     auto all = sc.create("all", "type surgeFront;");
     auto floor = sc.create("floor", "type surgeFront; maxHeight 0.02; minNeighbours 3;");
     all->start(sc.s, 0);
@@ -174,12 +174,12 @@ TEST(WaterLevel, NeedsGravity) {
 TEST(FieldStats, EnergyMomentumDensityErrorSpacingAndBounds) {
     TestScene sc(10, 10, Vec3::Zero());
     auto& s = sc.s;
-    const double m = s.fluid.particleMass();
+    const double m = test::fluidOf(s).particles.particleMass();
     double ke = 0, px = 0, py = 0, vmax = 0;
-    for (std::size_t i = 0; i < s.fluid.size(); ++i) {
+    for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
         const Vec3 v(0.1 * double(i % 7), -0.05 * double(i % 3), 0);
-        s.fluid.velocity()[i] = v;
-        s.fluid.density()[i] = 1000 * (1 + 0.001 * (double(i % 5) - 2)); // errors -0.2 % .. +0.2 %
+        test::fluidOf(s).particles.velocity()[i] = v;
+        test::fluidOf(s).particles.density()[i] = 1000 * (1 + 0.001 * (double(i % 5) - 2)); // errors -0.2 % .. +0.2 %
         ke += 0.5 * m * v.squaredNorm();
         px += m * v.x();
         py += m * v.y();
@@ -208,8 +208,8 @@ TEST(FieldStats, EnergyMomentumDensityErrorSpacingAndBounds) {
     EXPECT_NEAR(r[0][10], 0.005, xTol);
     EXPECT_NEAR(r[0][11], 0.095, xTol);
     // after a step: the closest pair from the neighbour lists
-    s.fluid.position()[0] = Vec3(0.012, 0.005, 0); // 0.003 from its neighbour at (0.015, 0.005)
-    s.search.build(s.fluid.position());
+    test::fluidOf(s).particles.position()[0] = Vec3(0.012, 0.005, 0); // 0.003 from its neighbour at (0.015, 0.005)
+    test::rebuild(s);
     stats->execute(s, false);
     const auto r2 = sc.rows("stats");
     ASSERT_EQ(r2.size(), 2u);

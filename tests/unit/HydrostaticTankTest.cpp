@@ -29,7 +29,7 @@ TEST(HydrostaticTank2D, SettlesToHydrostaticPressure) {
     const auto& s = sim.scene();
     const double dx = s.physics.particleSpacing, rho0 = s.physics.rho0, g = 9.81, H = 0.3, width = 0.2;
     // every particle stays inside the tank
-    for (const auto& x : s.fluid.position()) {
+    for (const auto& x : test::fluidOf(s).particles.position()) {
         ASSERT_GE(x.x(), 0.0);
         ASSERT_LE(x.x(), width);
         ASSERT_GE(x.y(), 0.0);
@@ -40,10 +40,10 @@ TEST(HydrostaticTank2D, SettlesToHydrostaticPressure) {
         double p = 0;
         int n = 0;
         zMean = 0;
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-            const double z = s.fluid.position()[i].y();
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+            const double z = test::fluidOf(s).particles.position()[i].y();
             if (z >= zLo && z < zHi) {
-                p += s.fluid.pressure()[i];
+                p += test::fluidOf(s).particles.pressure()[i];
                 zMean += z;
                 ++n;
             }
@@ -57,8 +57,8 @@ TEST(HydrostaticTank2D, SettlesToHydrostaticPressure) {
     const double bottomError = std::abs(pBottom - rho0 * g * (H - zBottom)) / (rho0 * g * H);
     const double midError = std::abs(pMid - rho0 * g * (H - zMid)) / (rho0 * g * H);
     double vMax = 0;
-    for (const auto& v : s.fluid.velocity()) vMax = std::max(vMax, double(v.norm()));
-    std::cout << "hydrostaticTank2D: " << s.fluid.size() << " particles, " << r.steps << " steps; bottom pressure "
+    for (const auto& v : test::fluidOf(s).particles.velocity()) vMax = std::max(vMax, double(v.norm()));
+    std::cout << "hydrostaticTank2D: " << test::fluidOf(s).particles.size() << " particles, " << r.steps << " steps; bottom pressure "
               << pBottom << " Pa vs " << rho0 * g * (H - zBottom) << " Pa (error " << 100 * bottomError
               << " % of rho0 g H), mid-depth error " << 100 * midError << " %, max speed " << vMax << " m/s\n";
     EXPECT_LT(bottomError, 0.05);

@@ -30,14 +30,14 @@ struct TestScene : test::BlockScene {
     // the average of max(0, ρ − ρ0)/ρ0 over the particles (the solver's average error)
     double averageCompression() const {
         double e = 0;
-        for (auto rho : s.fluid.density()) e += std::max(0.0, double(rho - s.physics.rho0) / s.physics.rho0);
-        return e / s.fluid.size();
+        for (auto rho : test::fluidOf(s).particles.density()) e += std::max(0.0, double(rho - s.physics.rho0) / s.physics.rho0);
+        return e / test::fluidOf(s).particles.size();
     }
-    void setAcceleration(const Vec3& a) { std::fill(s.fluid.acceleration().begin(), s.fluid.acceleration().end(), a); }
+    void setAcceleration(const Vec3& a) { std::fill(test::fluidOf(s).particles.acceleration().begin(), test::fluidOf(s).particles.acceleration().end(), a); }
     Vec3 totalAcceleration(double& scale) const {
         Vec3 total = Vec3::Zero();
         scale = 0;
-        for (const auto& a : s.fluid.acceleration()) {
+        for (const auto& a : test::fluidOf(s).particles.acceleration()) {
             total += a;
             scale += a.norm();
         }
@@ -58,8 +58,8 @@ void blockOnWalls(TestScene& sc, int n, double scale) {
     }
     test::addWallSystem(sc.s, "floor", floor);
     test::addWallSystem(sc.s, "side", side);
-    test::setWallMasses(sc.s, sc.s.fluid.particleMass());
-    WallSystem& own = sc.s.walls[1];
+    test::setWallMasses(sc.s, test::fluidOf(sc.s).particles.particleMass());
+    ParticleSystem& own = test::wallOf(sc.s, 1);
     own.pressureMirrored = false;
     for (std::size_t b = 0; b < own.size(); ++b) {
         own.particles.pressure()[b] = Scalar(100 + 20 * (b % 7));
@@ -67,11 +67,11 @@ void blockOnWalls(TestScene& sc, int n, double scale) {
     }
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1, 1);
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-        sc.s.fluid.velocity()[i] = 0.05 * Vec3(u(rng), u(rng), 0);
-        sc.s.fluid.pressure()[i] = Scalar(300 * (1 + u(rng)));
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+        test::fluidOf(sc.s).particles.velocity()[i] = 0.05 * Vec3(u(rng), u(rng), 0);
+        test::fluidOf(sc.s).particles.pressure()[i] = Scalar(300 * (1 + u(rng)));
     }
-    sc.s.search.build(sc.s.fluid.position());
+    test::rebuild(sc.s);
 }
 
 // One sweep of relaxed Jacobi from the pressure p (warmStart 1) equals the paper's update,
@@ -84,28 +84,28 @@ TEST(Iisph, OneSweepIsThePapersRelaxedJacobiUpdate) {
     TestScene sc(2);
     blockOnWalls(sc, 12, 0.99);
     auto& s = sc.s;
-    const double dt = 1e-3, omega = 0.5, rho0 = s.physics.rho0, m = s.fluid.particleMass();
+    const double dt = 1e-3, omega = 0.5, rho0 = s.physics.rho0, m = test::fluidOf(s).particles.particleMass();
     const Vec3 g(0, -9.81, 0);
-    const std::size_t n = s.fluid.size();
-    const std::vector<Scalar> p0 = s.fluid.pressure();
-    const std::vector<Vec3> x = s.fluid.position(), v = s.fluid.velocity();
+    const std::size_t n = test::fluidOf(s).particles.size();
+    const std::vector<Scalar> p0 = test::fluidOf(s).particles.pressure();
+    const std::vector<Vec3> x = test::fluidOf(s).particles.position(), v = test::fluidOf(s).particles.velocity();
     auto model = sc.pressure("type iisph; warmStart 1;", "maxDensityError 0; minIterations 1; maxIterations 1;");
-    model->computeDensity(s);
+    model->computeDensity(s, test::fluidOf(s), test::stepOf(s));
     sc.setAcceleration(g);
-    model->addPressureAcceleration(s, dt);
+    model->addPressureAcceleration(s, test::fluidOf(s), test::stepOf(s, dt));
     ASSERT_EQ(model->lastSolve().iterations, 1);
 
     // the paper's quantities, pair by pair
-    const double h = s.physics.supportRadius, dt2 = dt * dt;
+    const double h = s.constants.supportRadius, dt2 = dt * dt;
     auto near = [&](const Vec3& r) { return r.squaredNorm() < h * h; };
     std::vector<double> rho(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
         for (std::size_t j = 0; j < n; ++j)
             if (near(x[i] - x[j])) rho[i] += m * s.kernel.W((x[i] - x[j]).norm());
-        for (const auto& w : s.walls)
+        for (const ParticleSystem& w : test::walls(s))
             for (std::size_t b = 0; b < w.size(); ++b)
                 if (near(x[i] - w.particles.position()[b])) rho[i] += (*w.mass)[b] * s.kernel.W((x[i] - w.particles.position()[b]).norm());
-        EXPECT_NEAR(s.fluid.density()[i], rho[i], test::tol(1e-9, 1e-5) * rho0) << i;
+        EXPECT_NEAR(test::fluidOf(s).particles.density()[i], rho[i], test::tol(1e-9, 1e-5) * rho0) << i;
     }
     std::vector<Vec3> dii(n), sumDp(n), e(n);
     std::vector<double> rhoAdv(n), aii(n);
@@ -120,7 +120,7 @@ TEST(Iisph, OneSweepIsThePapersRelaxedJacobiUpdate) {
             sd += -dt2 * m / (rho[j] * rho[j]) * gw * p0[j]; // d_ij p_j
             adv += dt * m * (vi - (v[j] + dt * g)).dot(gw);
         }
-        for (const auto& w : s.walls)
+        for (const ParticleSystem& w : test::walls(s))
             for (std::size_t b = 0; b < w.size(); ++b) {
                 const Vec3 r = x[i] - w.particles.position()[b];
                 if (!near(r)) continue;
@@ -146,7 +146,7 @@ TEST(Iisph, OneSweepIsThePapersRelaxedJacobiUpdate) {
             a += m * (dii[i] - dji).dot(gw);
             sum += m * (sumDp[i] + e[i] - dii[j] * p0[j] - (sumDp[j] - dji * p0[i]) - e[j]).dot(gw);
         }
-        for (const auto& w : s.walls)
+        for (const ParticleSystem& w : test::walls(s))
             for (std::size_t b = 0; b < w.size(); ++b) {
                 const Vec3 r = x[i] - w.particles.position()[b];
                 if (!near(r)) continue;
@@ -157,7 +157,7 @@ TEST(Iisph, OneSweepIsThePapersRelaxedJacobiUpdate) {
         ASSERT_LT(a, 0) << i;
         const double expected = std::max(0.0, (1 - omega) * p0[i] + omega / a * (rho0 - rhoAdv[i] - sum));
         pMax = std::max(pMax, expected);
-        worst = std::max(worst, std::abs(s.fluid.pressure()[i] - expected));
+        worst = std::max(worst, std::abs(test::fluidOf(s).particles.pressure()[i] - expected));
     }
     std::cout << "one Jacobi sweep against the paper's update: largest difference " << worst << " Pa of pressures up to "
               << pMax << " Pa\n";
@@ -175,20 +175,20 @@ TEST(Iisph, ReturnsTheSymmetricPressureAccelerationOfThePressureItWrites) {
     auto& s = sc.s;
     const Vec3 g(0, -9.81, 0);
     auto model = sc.pressure("type iisph;", "");
-    model->computeDensity(s);
+    model->computeDensity(s, test::fluidOf(s), test::stepOf(s));
     sc.setAcceleration(g);
-    model->addPressureAcceleration(s, 1e-3);
+    model->addPressureAcceleration(s, test::fluidOf(s), test::stepOf(s, 1e-3));
     EXPECT_TRUE(model->lastSolve().converged);
-    std::vector<Scalar> q(s.fluid.size());
-    for (std::size_t i = 0; i < q.size(); ++i) q[i] = s.fluid.pressure()[i] / (s.fluid.density()[i] * s.fluid.density()[i]);
+    std::vector<Scalar> q(test::fluidOf(s).particles.size());
+    for (std::size_t i = 0; i < q.size(); ++i) q[i] = test::fluidOf(s).particles.pressure()[i] / (test::fluidOf(s).particles.density()[i] * test::fluidOf(s).particles.density()[i]);
     double worst = 0, scale = 0;
-    symmetricPressureAcceleration(s, s.fluid.position(), q.data(), [&](std::size_t i, const Vec3& ap) {
-        worst = std::max<double>(worst, (s.fluid.acceleration()[i] - g - ap).norm());
+    symmetricPressureAcceleration(s, test::fluidOf(s), test::fluidOf(s).particles.position(), q.data(), [&](std::size_t i, const Vec3& ap) {
+        worst = std::max<double>(worst, (test::fluidOf(s).particles.acceleration()[i] - g - ap).norm());
         scale = std::max<double>(scale, ap.norm());
     });
     EXPECT_GT(scale, 1.0);
     EXPECT_LT(worst, test::tol(1e-10, 1e-5) * scale);
-    for (Scalar p : s.fluid.pressure()) EXPECT_GE(p, 0);
+    for (Scalar p : test::fluidOf(s).particles.pressure()) EXPECT_GE(p, 0);
 }
 
 TEST(Iisph, ConvergesBelowEtaAndTheStepDecompresses) {
@@ -202,12 +202,12 @@ TEST(Iisph, ConvergesBelowEtaAndTheStepDecompresses) {
             EXPECT_TRUE(p->isIterative());
             EXPECT_EQ(p->result(), ResultKind::acceleration);
             EXPECT_EQ(p->soundSpeed(sc.s.constants, sc.s.physics), 0);
-            p->computeDensity(sc.s);
-            EXPECT_TRUE(sc.s.gradients.validFor(sc.s.search)) << "the density pass fills the gradient cache";
+            p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+            EXPECT_TRUE(test::fluidOf(sc.s).gradients.validFor(sc.s.listsOf(test::fluidOf(sc.s)))) << "the density pass fills the gradient cache";
             const double before = sc.maxCompression(), averageBefore = sc.averageCompression();
             ASSERT_GT(averageBefore, 5 * eta);
             sc.setAcceleration(Vec3::Zero());
-            p->addPressureAcceleration(sc.s, dt);
+            p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, dt));
             const SolverStats st = p->lastSolve();
             EXPECT_TRUE(st.converged) << dim << "D " << norm;
             EXPECT_GE(st.iterations, 2);
@@ -239,15 +239,15 @@ TEST(Iisph, WarmStartsFromAFractionOfTheLastPressure) {
     for (double warm : {0.5, 0.0, 1.0}) {
         TestScene sc(2);
         sc.block(12, 1.0);
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) sc.s.fluid.pressure()[i] = Scalar(10 + i);
-        const std::vector<Scalar> last = sc.s.fluid.pressure();
+        for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) test::fluidOf(sc.s).particles.pressure()[i] = Scalar(10 + i);
+        const std::vector<Scalar> last = test::fluidOf(sc.s).particles.pressure();
         auto p = sc.pressure("type iisph; warmStart " + std::to_string(warm) + ";",
                              "maxDensityError 1; minIterations 0; maxIterations 10;");
-        p->computeDensity(sc.s);
+        p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
         sc.setAcceleration(Vec3::Zero());
-        p->addPressureAcceleration(sc.s, 1e-3);
+        p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
         EXPECT_EQ(p->lastSolve().iterations, 0);
-        for (std::size_t i = 0; i < last.size(); ++i) ASSERT_EQ(sc.s.fluid.pressure()[i], Scalar(warm * last[i])) << i;
+        for (std::size_t i = 0; i < last.size(); ++i) ASSERT_EQ(test::fluidOf(sc.s).particles.pressure()[i], Scalar(warm * last[i])) << i;
     }
 }
 
@@ -256,9 +256,9 @@ TEST(Iisph, StopsAtMaxIterationsAndSaysItDidNotConverge) {
     TestScene sc(2);
     sc.block(20, 0.99);
     auto p = sc.pressure("type iisph;", "maxDensityError 1e-9; minIterations 0; maxIterations 3;");
-    p->computeDensity(sc.s);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
     sc.setAcceleration(Vec3::Zero());
-    p->addPressureAcceleration(sc.s, 1e-3);
+    p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
     EXPECT_EQ(p->lastSolve().iterations, 3);
     EXPECT_FALSE(p->lastSolve().converged);
     EXPECT_GT(p->lastSolve().avgDensityError, 1e-9);
@@ -305,14 +305,14 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
     sim.evaluate(s.time, Scalar(2e-3));
     const double rho0 = s.physics.rho0, g = 9.81, H = 0.3, dx = s.physics.particleSpacing;
     double maxErr = 0, vMax = 0, v2 = 0;
-    for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-        const Vec3 x = s.fluid.position()[i];
+    for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+        const Vec3 x = test::fluidOf(s).particles.position()[i];
         ASSERT_GE(x.x(), 0.0);
         ASSERT_LE(x.x(), 0.2);
         ASSERT_GE(x.y(), 0.0);
-        maxErr = std::max(maxErr, (s.fluid.density()[i] - rho0) / rho0);
-        vMax = std::max(vMax, double(s.fluid.velocity()[i].norm()));
-        v2 += s.fluid.velocity()[i].squaredNorm();
+        maxErr = std::max(maxErr, (test::fluidOf(s).particles.density()[i] - rho0) / rho0);
+        vMax = std::max(vMax, double(test::fluidOf(s).particles.velocity()[i].norm()));
+        v2 += test::fluidOf(s).particles.velocity()[i].squaredNorm();
     }
     // row-mean pressure against ρ0 g (H − z): the bottom row and the mid-depth row, as a
     // fraction of ρ0 g H
@@ -320,10 +320,10 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
         double z = 0;
         int count = 0;
         p = 0;
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-            const double y = s.fluid.position()[i].y();
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+            const double y = test::fluidOf(s).particles.position()[i].y();
             if (y >= zLo && y < zHi) {
-                p += s.fluid.pressure()[i];
+                p += test::fluidOf(s).particles.pressure()[i];
                 z += y;
                 ++count;
             }
@@ -335,7 +335,7 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
     };
     double pBottom, pMid;
     const double bottomError = rowError(0, dx, pBottom), midError = rowError(0.15 - 0.5 * dx, 0.15 + 0.5 * dx, pMid);
-    const double rms = std::sqrt(v2 / s.fluid.size());
+    const double rms = std::sqrt(v2 / test::fluidOf(s).particles.size());
     std::cout << "iisph hydrostatic column: " << r.steps << " steps, " << r.averageIterations
               << " iterations on average; final max density error " << 100 * maxErr << " %, max speed " << vMax
               << " m/s, RMS speed " << rms << " m/s; bottom row " << pBottom << " Pa (error " << 100 * bottomError

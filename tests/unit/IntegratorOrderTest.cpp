@@ -47,15 +47,15 @@ struct Result {
 Result integrate(const std::string& dict, const Problem& p, double dt, double T = 1.0) {
     Scene s;
     s.physics = test::physicsFor(3);
-    s.fluid.resize(1);
-    s.fluid.position()[0] = p.x0;
-    s.fluid.velocity()[0] = p.v0;
+    test::fluidOf(s).particles.resize(1);
+    test::fluidOf(s).particles.position()[0] = p.x0;
+    test::fluidOf(s).particles.velocity()[0] = p.v0;
     auto integrator = test::createModel<Integrator>(dict, s.physics);
     integrator->initialise(s);
-    auto evaluate = [&](double) { s.fluid.acceleration()[0] = p.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
+    auto evaluate = [&](double, Scalar) { test::fluidOf(s).particles.acceleration()[0] = p.acceleration(test::fluidOf(s).particles.position()[0], test::fluidOf(s).particles.velocity()[0]); };
     const int steps = int(std::lround(T / dt));
-    for (int n = 0; n < steps; ++n) integrator->step(s, dt, evaluate);
-    return {s.fluid.position()[0], s.fluid.velocity()[0]};
+    for (int n = 0; n < steps; ++n) integrator->step(s, test::noServices(), dt, evaluate);
+    return {test::fluidOf(s).particles.position()[0], test::fluidOf(s).particles.velocity()[0]};
 }
 
 double positionError(const std::string& dict, const Problem& p, double dt) {
@@ -140,10 +140,10 @@ TEST(PereaCorderoIntegrator, HistoryFieldsOnlyWhenChosenAndRestartExact) {
     {
         Scene s;
         s.physics = physics;
-        s.fluid.resize(1);
+        test::fluidOf(s).particles.resize(1);
         test::createModel<Integrator>("type velocityVerlet;", physics)->initialise(s);
-        EXPECT_FALSE(s.fluid.hasField("accelerationOld1"));
-        EXPECT_FALSE(s.fluid.hasField("accelerationOld2"));
+        EXPECT_FALSE(test::fluidOf(s).particles.hasField("accelerationOld1"));
+        EXPECT_FALSE(test::fluidOf(s).particles.hasField("accelerationOld2"));
     }
     // run 40 steps in one go, or 17 steps, "write" (copy position, velocity and the restart
     // fields into a fresh system with a fresh integrator, as a restart does) and 23 more
@@ -151,51 +151,51 @@ TEST(PereaCorderoIntegrator, HistoryFieldsOnlyWhenChosenAndRestartExact) {
     const std::string dict = "type pereaCordero;";
     auto makeSystem = [&](Scene& s) {
         s.physics = physics;
-        s.fluid.resize(2);
-        s.fluid.position() = {Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
-        s.fluid.velocity() = {Vec3(0, omega, 0), Vec3(0.3, 0, 0)};
+        test::fluidOf(s).particles.resize(2);
+        test::fluidOf(s).particles.position() = {Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
+        test::fluidOf(s).particles.velocity() = {Vec3(0, omega, 0), Vec3(0.3, 0, 0)};
     };
     auto evaluateFor = [&](Scene& s) {
-        return [&s](double) {
+        return [&s](double, Scalar) {
             for (std::size_t i = 0; i < 2; ++i)
-                s.fluid.acceleration()[i] = dampedOscillator.acceleration(s.fluid.position()[i], s.fluid.velocity()[i]);
+                test::fluidOf(s).particles.acceleration()[i] = dampedOscillator.acceleration(test::fluidOf(s).particles.position()[i], test::fluidOf(s).particles.velocity()[i]);
         };
     };
     Scene whole;
     makeSystem(whole);
     auto integrator = test::createModel<Integrator>(dict, physics);
     integrator->initialise(whole);
-    ASSERT_TRUE(whole.fluid.hasField("accelerationOld1"));
-    ASSERT_TRUE(whole.fluid.hasField("accelerationOld2"));
-    for (const auto& f : whole.fluid.vectorFields()) {
+    ASSERT_TRUE(test::fluidOf(whole).particles.hasField("accelerationOld1"));
+    ASSERT_TRUE(test::fluidOf(whole).particles.hasField("accelerationOld2"));
+    for (const auto& f : test::fluidOf(whole).particles.vectorFields()) {
         if (f->name.rfind("accelerationOld", 0) == 0) {
             EXPECT_TRUE(f->options.restart) << f->name;
         }
     }
-    for (int n = 0; n < 40; ++n) integrator->step(whole, dt, evaluateFor(whole));
+    for (int n = 0; n < 40; ++n) integrator->step(whole, test::noServices(), dt, evaluateFor(whole));
 
     Scene first;
     makeSystem(first);
     auto i1 = test::createModel<Integrator>(dict, physics);
     i1->initialise(first);
-    for (int n = 0; n < 17; ++n) i1->step(first, dt, evaluateFor(first));
+    for (int n = 0; n < 17; ++n) i1->step(first, test::noServices(), dt, evaluateFor(first));
     Scene second;
     makeSystem(second);
     auto i2 = test::createModel<Integrator>(dict, physics);
     i2->initialise(second);
-    second.fluid.position() = first.fluid.position();
-    second.fluid.velocity() = first.fluid.velocity();
-    second.fluid.acceleration() = first.fluid.acceleration();
-    for (const auto& f : first.fluid.vectorFields())
-        if (f->options.restart) *second.fluid.findVector(f->name) = f->data;
-    for (const auto& f : first.fluid.scalarFields())
-        if (f->options.restart) *second.fluid.findScalar(f->name) = f->data;
+    test::fluidOf(second).particles.position() = test::fluidOf(first).particles.position();
+    test::fluidOf(second).particles.velocity() = test::fluidOf(first).particles.velocity();
+    test::fluidOf(second).particles.acceleration() = test::fluidOf(first).particles.acceleration();
+    for (const auto& f : test::fluidOf(first).particles.vectorFields())
+        if (f->options.restart) *test::fluidOf(second).particles.findVector(f->name) = f->data;
+    for (const auto& f : test::fluidOf(first).particles.scalarFields())
+        if (f->options.restart) *test::fluidOf(second).particles.findScalar(f->name) = f->data;
     second.step = 17;
     i2->restarted(second);
-    for (int n = 0; n < 23; ++n) i2->step(second, dt, evaluateFor(second));
+    for (int n = 0; n < 23; ++n) i2->step(second, test::noServices(), dt, evaluateFor(second));
     for (std::size_t i = 0; i < 2; ++i) {
-        EXPECT_EQ(second.fluid.position()[i], whole.fluid.position()[i]);
-        EXPECT_EQ(second.fluid.velocity()[i], whole.fluid.velocity()[i]);
+        EXPECT_EQ(test::fluidOf(second).particles.position()[i], test::fluidOf(whole).particles.position()[i]);
+        EXPECT_EQ(test::fluidOf(second).particles.velocity()[i], test::fluidOf(whole).particles.velocity()[i]);
     }
 }
 

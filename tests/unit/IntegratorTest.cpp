@@ -29,15 +29,15 @@ const Problem oscillator{[](const Vec3& x, const Vec3&) { return Vec3(-omega * o
 double positionError(const std::string& integratorName, const Problem& p, double dt, double T = 1.0) {
     Scene s;
     s.physics = test::physicsFor(3);
-    s.fluid.resize(1);
-    s.fluid.position()[0] = p.x0;
-    s.fluid.velocity()[0] = p.v0;
+    auto& set = test::addFluid(s, 1).particles;
+    set.position()[0] = p.x0;
+    set.velocity()[0] = p.v0;
     auto integrator = test::createModel<Integrator>("type " + integratorName + ";", s.physics);
     integrator->initialise(s);
-    auto evaluate = [&](double) { s.fluid.acceleration()[0] = p.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
+    auto evaluate = [&](double, Scalar) { set.acceleration()[0] = p.acceleration(set.position()[0], set.velocity()[0]); };
     const int steps = int(std::lround(T / dt));
-    for (int n = 0; n < steps; ++n) integrator->step(s, dt, evaluate);
-    return (s.fluid.position()[0] - p.exactPosition(steps * dt)).norm();
+    for (int n = 0; n < steps; ++n) integrator->step(s, test::noServices(), dt, evaluate);
+    return (set.position()[0] - p.exactPosition(steps * dt)).norm();
 }
 
 double observedOrder(const std::string& name, const Problem& p) {
@@ -75,17 +75,17 @@ TEST(Integrators, LeapfrogConservesOscillatorEnergyOverLongTimes) {
     // symplectic: the energy error stays bounded over 1000 periods instead of drifting
     Scene s;
     s.physics = test::physicsFor(3);
-    s.fluid.resize(1);
-    s.fluid.position()[0] = oscillator.x0;
-    s.fluid.velocity()[0] = oscillator.v0;
+    auto& set = test::addFluid(s, 1).particles;
+    set.position()[0] = oscillator.x0;
+    set.velocity()[0] = oscillator.v0;
     auto integrator = test::createModel<Integrator>("type leapfrog;", s.physics);
-    auto evaluate = [&](double) { s.fluid.acceleration()[0] = oscillator.acceleration(s.fluid.position()[0], s.fluid.velocity()[0]); };
-    auto energy = [&] { return 0.5 * s.fluid.velocity()[0].squaredNorm() + 0.5 * omega * omega * s.fluid.position()[0].squaredNorm(); };
+    auto evaluate = [&](double, Scalar) { set.acceleration()[0] = oscillator.acceleration(set.position()[0], set.velocity()[0]); };
+    auto energy = [&] { return 0.5 * set.velocity()[0].squaredNorm() + 0.5 * omega * omega * set.position()[0].squaredNorm(); };
     const double e0 = energy();
     double worst = 0;
     const double dt = 0.05;
     for (int n = 0; n < int(1000 * 2 * std::numbers::pi / omega / dt); ++n) {
-        integrator->step(s, dt, evaluate);
+        integrator->step(s, test::noServices(), dt, evaluate);
         worst = std::max(worst, std::abs(energy() - e0) / e0);
     }
     EXPECT_LT(worst, 0.01);

@@ -26,11 +26,11 @@ struct TestScene {
         const double dx = s.physics.particleSpacing;
         const int dim = s.physics.dimension;
         test::fillLattice(s, *kernel, Vec3::Zero(), Vec3(n * dx, n * dx, dim == 3 ? n * dx : 0));
-        s.fluid.setParticleMass(s.fluid.particleMass() * compression);
+        test::fluidOf(s).particles.setParticleMass(test::fluidOf(s).particles.particleMass() * compression);
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-1, 1);
-        for (auto& x : s.fluid.position()) x += jitter * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
-        s.search.build(s.fluid.position());
+        for (auto& x : test::fluidOf(s).particles.position()) x += jitter * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
+        test::rebuild(s);
     }
     // three layers of wall particles below the block, Akinci volumes
     std::unique_ptr<BoundaryModel> floor(int n) {
@@ -39,16 +39,16 @@ struct TestScene {
         for (int layer = 0; layer < 3; ++layer)
             for (int i = -3; i < n + 3; ++i) wall.emplace_back((i + 0.5) * dx, -(layer + 0.5) * dx, 0);
         test::addWallSystem(s, "floor", wall);
-        s.search.build(s.fluid.position());
+        test::rebuild(s);
         auto b = test::createModel<BoundaryModel>("type akinci; volume adaptive;", s.physics);
         b->initialise(s);
         return b;
     }
     std::vector<Vec3> pressureAcceleration(PressureModel& p, bool recomputeDensity = true) {
-        if (recomputeDensity) p.computeDensity(s);
-        for (auto& a : s.fluid.acceleration()) a.setZero();
-        p.addPressureAcceleration(s, 1e-4);
-        return s.fluid.acceleration();
+        if (recomputeDensity) p.computeDensity(s, test::fluidOf(s), test::stepOf(s));
+        for (auto& a : test::fluidOf(s).particles.acceleration()) a.setZero();
+        p.addPressureAcceleration(s, test::fluidOf(s), test::stepOf(s, 1e-4));
+        return test::fluidOf(s).particles.acceleration();
     }
 };
 
@@ -155,8 +155,8 @@ TEST(Isobaric, NoForceInAUniformPressureNeighbourhood) {
         auto wcsph = test::createModel<PressureModel>("type wcsph; soundSpeed 20;", sc.s.physics);
         iso->initialise(sc.s);
         wcsph->initialise(sc.s);
-        iso->computeDensity(sc.s);
-        for (auto& p : sc.s.fluid.pressure()) p = 5000; // uniform, densities as computed (irregular block)
+        iso->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+        for (auto& p : test::fluidOf(sc.s).particles.pressure()) p = 5000; // uniform, densities as computed (irregular block)
         const auto ai = sc.pressureAcceleration(*iso, false);
         const auto aw = sc.pressureAcceleration(*wcsph, false);
         EXPECT_EQ(maxNorm(ai), 0.0) << dim << "D: isobaric term under uniform pressure";
@@ -188,12 +188,12 @@ TEST(Isobaric, NoExtraWallPushUnderHydrostaticPressure) {
             delta == "wcsph" ? "type wcsph; soundSpeed 20;" : "type isobaric; soundSpeed 20; delta " + delta + ";",
             sc.s.physics);
         iso->initialise(sc.s);
-        iso->computeDensity(sc.s);
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i)
-            sc.s.fluid.pressure()[i] = 1000 * g * (H - sc.s.fluid.position()[i].y());
+        iso->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+        for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i)
+            test::fluidOf(sc.s).particles.pressure()[i] = 1000 * g * (H - test::fluidOf(sc.s).particles.position()[i].y());
         const auto a = sc.pressureAcceleration(*iso, false);
         for (std::size_t i = 0; i < a.size(); ++i) {
-            const Vec3& x = sc.s.fluid.position()[i];
+            const Vec3& x = test::fluidOf(sc.s).particles.position()[i];
             if (x.y() < 3 * dx && x.x() > 4 * dx && x.x() < (n - 4) * dx)
                 worst[delta] = std::max(worst[delta], (a[i] + sc.s.physics.gravity).norm() / g);
         }
@@ -213,16 +213,16 @@ TEST(Isobaric, MatchesAHandComputation) {
     const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(dx, 0, 0), Vec3(0, 0.8 * dx, 0), Vec3(-1.3 * dx, 0.4 * dx, 0),
                                  Vec3(0.5 * dx, -1.6 * dx, 0)};
     test::fillLattice(sc.s, *sc.kernel, Vec3::Zero(), Vec3(5 * dx, dx, 0)); // 5 particles, tabulated kernel
-    sc.s.fluid.position() = x;
-    sc.s.search.build(x);
+    test::fluidOf(sc.s).particles.position() = x;
+    test::rebuild(sc.s);
     auto iso = test::createModel<PressureModel>("type isobaric; delta 0.1; soundSpeed 20;", sc.s.physics);
     iso->initialise(sc.s);
-    sc.s.fluid.density() = {1010, 1004, 998, 1020, 1001};
-    sc.s.fluid.pressure() = {2000, 2000, 1800, 500, 2150}; // 𝒫 = 0, 0.1, 0.75, 0.0698
+    test::fluidOf(sc.s).particles.density() = {1010, 1004, 998, 1020, 1001};
+    test::fluidOf(sc.s).particles.pressure() = {2000, 2000, 1800, 500, 2150}; // 𝒫 = 0, 0.1, 0.75, 0.0698
     const auto a = sc.pressureAcceleration(*iso, false);
-    const double m = sc.s.fluid.particleMass();
-    const auto& rho = sc.s.fluid.density();
-    const auto& p = sc.s.fluid.pressure();
+    const double m = test::fluidOf(sc.s).particles.particleMass();
+    const auto& rho = test::fluidOf(sc.s).particles.density();
+    const auto& p = test::fluidOf(sc.s).particles.pressure();
     const double A = 1 + 1 / (4 * delta), B = 1 / delta, root = (B - std::sqrt(B * B - 8 * A)) / (2 * A);
     Vec3 expected = Vec3::Zero();
     for (int j = 1; j < 5; ++j) {
@@ -243,7 +243,7 @@ TEST(Isobaric, MomentumDriftOfTheDifferencePart) {
     // not: report the net force relative to the total force magnitude.
     TestScene sc(2);
     sc.block(20, 0.03, 1.03);
-    const double m = sc.s.fluid.particleMass();
+    const double m = test::fluidOf(sc.s).particles.particleMass();
     auto drift = [&](const std::string& dict, double* blendFraction) {
         auto model = test::createModel<PressureModel>(dict, sc.s.physics);
         model->initialise(sc.s);
@@ -255,11 +255,11 @@ TEST(Isobaric, MomentumDriftOfTheDifferencePart) {
             total += m * ai.norm();
         }
         if (blendFraction) {
-            const auto& p = sc.s.fluid.pressure();
+            const auto& p = test::fluidOf(sc.s).particles.pressure();
             long inZone = 0, pairs = 0;
             const isobaric::Blend blend(0.05);
             for (std::size_t i = 0; i < p.size(); ++i)
-                forEachNeighbour(sc.s.search.fluidNeighbours(), sc.s.fluid.position(), sc.s.fluid.position(), i,
+                forEachNeighbour(sc.s.listsOf(test::fluidOf(sc.s)).own(), test::fluidOf(sc.s).particles.position(), test::fluidOf(sc.s).particles.position(), i,
                                  [&](Index j, const Vec3&, Scalar) {
                                      ++pairs;
                                      if (blend.alpha(isobaric::Blend::relativePressure(p[i], p[j])) > 0) ++inZone;

@@ -1,5 +1,7 @@
 // NeighbourSearch: same neighbours as a brute-force search, for any thread count, including
-// points outside the grid's domain (clamped into border cells).
+// points outside the grid's domain (clamped into border cells). Most tests search a fluid
+// (system 0, against itself) and walls (systems 1, 2, ...: the fluid's neighbours among them),
+// declared as the scene declares them (FluidAndWalls).
 #include "NeighbourSearch.hpp"
 #include "TestSupport.hpp"
 
@@ -30,6 +32,63 @@ std::set<Index> bruteForce(const std::vector<Vec3>& pts, const Vec3& x, Scalar h
     return out;
 }
 
+// A search over a fluid (system 0, with its own list) and wall systems (1, 2, ...; the fluid
+// against each), with the particles' positions given at each build.
+class FluidAndWalls {
+public:
+    void setup(Scalar h, int dim, const Vec3& lo, const Vec3& hi, const Periodicity& periodic = {}) {
+        search.setup(h, dim, lo, hi, periodic);
+        search.addSystem(&fluid_, false);
+        search.addInteraction(0, 0);
+    }
+    struct Wall {
+        const std::vector<Vec3>* positions;
+        bool moving;
+    };
+    void setWalls(const std::vector<Wall>& walls) {
+        for (const Wall& w : walls) {
+            const std::size_t k = search.addSystem(w.positions, !w.moving);
+            search.addInteraction(0, k);
+        }
+    }
+    void build(const std::vector<Vec3>& points) {
+        fluid_ = points;
+        search.positionsChanged(0);
+        search.build();
+    }
+    void buildAhead(const std::vector<Vec3>& points) { search.buildAhead(0, points); }
+    bool builtAt(const std::vector<Vec3>& points) const { return search.builtAt(0, points); }
+    void permute(const std::vector<Index>& order) {
+        search.permute(0, order);
+        permuteVector(fluid_, order);
+    }
+    const QueryLists& lists() const { return search.of(0); }
+    const NeighbourList& fluidNeighbours() const { return search.neighbours(0, 0); }
+    const NeighbourList& wallNeighbours(std::size_t k) const { return search.neighbours(0, k + 1); }
+    const NeighbourList& wallFluidNeighbours(std::size_t k) const { return search.reverseNeighbours(0, k + 1); }
+    NeighbourList wallWallList(std::size_t k, std::size_t l) const { return search.listBetween(k + 1, l + 1); }
+    std::size_t wallCount() const { return search.systemCount() - 1; }
+    const UniformGrid& fluidGrid() const { return search.grid(0); }
+    const UniformGrid& wallGrid(std::size_t k) const { return search.grid(k + 1); }
+    std::vector<Index> sortOrder(const std::vector<Vec3>& points) const { return search.sortOrder(points); }
+    auto workRange(int t, int threads, QueryLists::PairWork work = QueryLists::PairWork::All) const {
+        return lists().workRange(t, threads, work);
+    }
+    int workRangeThreads() const { return lists().workRangeThreads(); }
+    void recordTime(int t, int threads, QueryLists::PairWork work, std::size_t first, std::size_t last, double seconds) const {
+        lists().recordTime(t, threads, work, first, last, seconds);
+    }
+    const std::vector<double>& threadSpeeds() const { return lists().threadSpeeds(); }
+    const std::vector<double>& searchThreadSpeeds() const { return lists().searchThreadSpeeds(); }
+    auto searchRange(int t, int threads) const { return lists().searchRange(t, threads); }
+    std::uint32_t wallNeighbourCount(std::size_t i) const { return lists().otherNeighbourCount(i); }
+
+    NeighbourSearch search;
+
+private:
+    std::vector<Vec3> fluid_;
+};
+
 class NeighbourSearchTest : public testing::TestWithParam<int> {};
 
 TEST_P(NeighbourSearchTest, MatchesBruteForce) {
@@ -37,7 +96,7 @@ TEST_P(NeighbourSearchTest, MatchesBruteForce) {
     const Scalar h = 0.07, extent = 1.0;
     const auto fluid = randomPoints(dim == 2 ? 3000 : 6000, dim, extent, 1);
     const auto wall = randomPoints(1000, dim, extent, 2);
-    NeighbourSearch search;
+    FluidAndWalls search;
     Vec3 hi = Vec3::Constant(extent);
     if (dim == 2) hi[2] = 0;
     search.setup(h, dim, Vec3::Zero(), hi);
@@ -69,7 +128,7 @@ TEST_P(NeighbourSearchTest, ListsIndependentOfThreadCountAndSplit) {
 #ifdef _OPENMP
     const int dim = GetParam();
     const auto pts = randomPoints(5000, dim, 1.0, 3);
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, dim == 3 ? 1 : 0));
     const auto wall = randomPoints(1000, dim, 1.0, 4);
     search.setWalls({{&wall, false}});
@@ -111,7 +170,7 @@ TEST_P(NeighbourSearchTest, ListsIndependentOfThreadCountAndSplit) {
 TEST_P(NeighbourSearchTest, SortOrderIsAPermutationAlongTheCurve) {
     const int dim = GetParam();
     const auto pts = randomPoints(2000, dim, 1.0, 4);
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, dim == 3 ? 1 : 0));
     const auto order = search.sortOrder(pts);
     std::vector<Index> sorted = order;
@@ -143,8 +202,8 @@ TEST_P(NeighbourSearchTest, PermutedListsEqualABuildOnTheReorderedPoints) {
         periodic.axis[0] = periodicX;
         periodic.length = Vec3(1, 0, 0);
         for (auto& x : fluid) periodic.wrap(x);
-        NeighbourSearch relabelled, fresh;
-        for (auto* s : {&relabelled, &fresh}) {
+        FluidAndWalls relabelled, fresh;
+        for (FluidAndWalls* s : {&relabelled, &fresh}) {
             s->setup(h, dim, Vec3::Zero(), hi, periodic);
             s->setWalls({{&wall, false}});
         }
@@ -181,7 +240,7 @@ TEST(NeighbourSearch, WorkRangesTileTheParticlesWithEqualWork) {
     std::sort(fluid.begin(), fluid.end(), [](const Vec3& a, const Vec3& b) { return a[1] < b[1]; });
     for (int k = 0; k < 3; ++k) // a dense wall along y = 0
         for (int i = 0; i < 400; ++i) wall.push_back(Vec3(i / 400.0, -0.005 * k, 0));
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(0.04, 2, Vec3(0, -0.1, 0), Vec3(1, 1, 0));
     search.setWalls({{&wall, false}});
     search.build(fluid);
@@ -220,9 +279,9 @@ TEST(NeighbourSearch, WorkRangesTileTheParticlesWithEqualWork) {
     EXPECT_LT(std::abs(w0 - w1), 0.05 * std::max(w0, w1));
     EXPECT_LT(a1, fluid.size() / 2); // the wall's side is the heavier one
     // PairWork::Fluid balances the fluid pairs alone (passes that visit no wall pair)
-    const auto [f0, f1] = search.workRange(0, 2, NeighbourSearch::PairWork::Fluid);
+    const auto [f0, f1] = search.workRange(0, 2, QueryLists::PairWork::Own);
     EXPECT_EQ(f0, 0u);
-    EXPECT_EQ(search.workRange(1, 2, NeighbourSearch::PairWork::Fluid).second, fluid.size());
+    EXPECT_EQ(search.workRange(1, 2, QueryLists::PairWork::Own).second, fluid.size());
     double v0 = 0, v1 = 0;
     for (std::size_t i = 0; i < f1; ++i) v0 += ff.count(i);
     for (std::size_t i = f1; i < fluid.size(); ++i) v1 += ff.count(i);
@@ -240,15 +299,15 @@ TEST(NeighbourSearch, WorkRangesFollowTheThreadsMeasuredSpeeds) {
     std::uniform_real_distribution<Scalar> u(0, 1);
     std::vector<Vec3> fluid(6000);
     for (auto& p : fluid) p = Vec3(u(rng), u(rng), 0);
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(0.04, 2, Vec3::Zero(), Vec3(1, 1, 0));
-    const auto share = [&](NeighbourSearch::PairWork kind) { // the first thread's part of the pairs
+    const auto share = [&](QueryLists::PairWork kind) { // the first thread's part of the pairs
         const auto [first, last] = search.workRange(0, 2, kind);
         const auto& ff = search.fluidNeighbours();
         return double(ff.offsets[last] - ff.offsets[first]) / double(ff.totalPairs());
     };
     const auto buildTimed = [&](double slowdown) { // the passes of a step, then the next build
-        for (auto kind : {NeighbourSearch::PairWork::FluidAndWall, NeighbourSearch::PairWork::Fluid})
+        for (auto kind : {QueryLists::PairWork::All, QueryLists::PairWork::Own})
             for (int t = 0; t < 2; ++t) {
                 const auto [first, last] = search.workRange(t, 2, kind);
                 const auto& ff = search.fluidNeighbours();
@@ -260,19 +319,19 @@ TEST(NeighbourSearch, WorkRangesFollowTheThreadsMeasuredSpeeds) {
     const int saved = omp_get_max_threads();
     omp_set_num_threads(2);
     search.build(fluid);
-    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 0.5, 0.01);
+    EXPECT_NEAR(share(QueryLists::PairWork::Own), 0.5, 0.01);
     for (int step = 0; step < 40; ++step) buildTimed(2.0);
     EXPECT_NEAR(search.threadSpeeds()[0], 2.0 / 3, 0.01);
-    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 1.0 / 3, 0.01);
-    EXPECT_NEAR(share(NeighbourSearch::PairWork::FluidAndWall), 1.0 / 3, 0.01);
+    EXPECT_NEAR(share(QueryLists::PairWork::Own), 1.0 / 3, 0.01);
+    EXPECT_NEAR(share(QueryLists::PairWork::All), 1.0 / 3, 0.01);
     buildTimed(1.0); // one step does not undo it all: the speeds are averaged over steps
-    EXPECT_LT(share(NeighbourSearch::PairWork::Fluid), 0.45);
+    EXPECT_LT(share(QueryLists::PairWork::Own), 0.45);
     for (int step = 0; step < 40; ++step) buildTimed(1.0);
-    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 0.5, 0.01);
+    EXPECT_NEAR(share(QueryLists::PairWork::Own), 0.5, 0.01);
     // times from another thread count are ignored
-    search.recordTime(0, 3, NeighbourSearch::PairWork::Fluid, 0, 10, 1.0);
+    search.recordTime(0, 3, QueryLists::PairWork::Own, 0, 10, 1.0);
     search.build(fluid);
-    EXPECT_NEAR(share(NeighbourSearch::PairWork::Fluid), 0.5, 0.01);
+    EXPECT_NEAR(share(QueryLists::PairWork::Own), 0.5, 0.01);
     omp_set_num_threads(saved);
 }
 #endif
@@ -284,7 +343,7 @@ TEST(NeighbourSearch, WorkRangesFollowTheThreadsMeasuredSpeeds) {
 // give the slow thread less.
 TEST(NeighbourSearch, BalancedPassesShareTheRangeOfAHeldUpThread) {
     const std::vector<Vec3> fluid = randomPoints(4000, 2, 1.0, 8);
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(0.04, 2, Vec3::Zero(), Vec3(1, 1, 0));
     const int saved = omp_get_max_threads();
     for (int threads : {2, 3}) {
@@ -292,7 +351,7 @@ TEST(NeighbourSearch, BalancedPassesShareTheRangeOfAHeldUpThread) {
         search.build(fluid);
         const auto [first0, last0] = search.workRange(0, threads);
         std::vector<int> visits(fluid.size(), 0), by(fluid.size(), -1);
-        forEachParticleBalanced(search, [&](std::size_t i) {
+        forEachParticleBalanced(search.lists(), [&](std::size_t i) {
             const int t = omp_get_thread_num();
             ++visits[i];
             by[i] = t;
@@ -328,12 +387,12 @@ TEST_P(NeighbourSearchTest, GridCoversTheOccupiedCellsOnly) {
     auto fluid = inBox(dim == 2 ? 1500 : 3000, 0.8, 1.9);
     fluid.push_back(Vec3(1.55, 1.2, dim == 3 ? 1.2 : 0)); // in the cell after the walls' last one
     fluid.push_back(Vec3(9, 9, dim == 3 ? 9 : 0));         // outside the domain
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(h, dim, Vec3::Zero(), Vec3(4, 4, dim == 3 ? 4 : 0));
     const double latticeCells = std::pow(std::ceil(4 / h) + 1, dim);
     search.setWalls({{&wall, false}});
-    EXPECT_LT(double(search.wallGrid(0).cellCount()), latticeCells / 50);
     search.build(fluid);
+    EXPECT_LT(double(search.wallGrid(0).cellCount()), latticeCells / 50);
     const auto& ff = search.fluidNeighbours();
     const auto& fb = search.wallNeighbours(0);
     std::size_t wallPairs = 0;
@@ -354,7 +413,7 @@ TEST_P(NeighbourSearchTest, GridCoversTheOccupiedCellsOnly) {
 TEST(NeighbourSearch, NonFiniteAndFarAwayPointsAreHandled) {
     std::vector<Vec3> pts = {Vec3(0.5, 0.5, 0), Vec3(0.52, 0.5, 0), Vec3(1e9, 1e9, 0),
                              Vec3(1e9 + 0.01, 1e9, 0), Vec3(std::nan(""), 0, 0)};
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(0.05, 2, Vec3::Zero(), Vec3(1, 1, 0));
     search.build(pts);
     const auto& l = search.fluidNeighbours();
@@ -377,7 +436,7 @@ TEST_P(NeighbourSearchTest, PeriodicAxesUseTheNearestImage) {
     pts[0] = Vec3(-0.49, 0.5, dim == 3 ? 0.5 : 0); // neighbours across the periodic boundary
     pts[1] = Vec3(0.49, 0.5, dim == 3 ? 0.5 : 0);
     pts[2] = Vec3(1.505, 0.5, dim == 3 ? 0.5 : 0); // outside [min, min + L): an image of x = 0.505
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(h, dim, Vec3(-0.5, 0, 0), Vec3(0.5, 1, dim == 3 ? 1 : 0), periodic);
     search.build(pts);
     const auto& l = search.fluidNeighbours();
@@ -410,7 +469,7 @@ TEST(NeighbourSearch, WallSystemsFixedAndMovingWithTransposes) {
     auto fluid = randomPoints(2000, dim, 1.0, 11);
     const auto fixedWall = randomPoints(500, dim, 1.0, 12);
     auto movingWall = randomPoints(300, dim, 0.5, 13);
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(h, dim, Vec3::Zero(), Vec3(1.5, 1.5, 0));
     search.setWalls({{&fixedWall, false}, {&movingWall, true}});
     ASSERT_EQ(search.wallCount(), 2u);
@@ -441,26 +500,38 @@ TEST(NeighbourSearch, WallSystemsFixedAndMovingWithTransposes) {
 }
 
 // A search made ahead at predicted positions is recognised when the particles get there, also
-// after the particles are re-sorted with it, and forgotten after an ordinary build.
+// after the particles are re-sorted with it, and forgotten after an ordinary build; listsAt
+// tells the positions of the lists either way.
 TEST(NeighbourSearch, BuildAheadIsKeptUntilTheNextBuild) {
     const int dim = 2;
     auto fluid = randomPoints(1500, dim, 1.0, 21);
-    NeighbourSearch search;
+    FluidAndWalls search;
     search.setup(0.05, dim, Vec3::Zero(), Vec3(1, 1, 0));
     search.build(fluid);
     EXPECT_FALSE(search.builtAt(fluid));
+    EXPECT_TRUE(search.search.listsAt(0, fluid));
     auto ahead = fluid;
     for (auto& x : ahead) x += Vec3(0.001, -0.002, 0);
     search.buildAhead(ahead);
     EXPECT_TRUE(search.builtAt(ahead));
     EXPECT_FALSE(search.builtAt(fluid));
+    EXPECT_FALSE(search.search.listsAt(0, fluid));
     const auto order = search.sortOrder(ahead);
     std::vector<Vec3> sorted(ahead.size());
     for (std::size_t i = 0; i < ahead.size(); ++i) sorted[i] = ahead[order[i]];
     search.permute(order);
     EXPECT_TRUE(search.builtAt(sorted));
-    search.build(sorted);
-    EXPECT_FALSE(search.builtAt(sorted));
+    const long builds = search.search.builds();
+    search.build(sorted); // kept: no search
+    EXPECT_EQ(search.search.builds(), builds);
+    auto moved = sorted;
+    moved[0] += Vec3(0.001, 0, 0);
+    search.build(moved);
+    EXPECT_FALSE(search.builtAt(moved));
+    EXPECT_TRUE(search.search.listsAt(0, moved));
+    EXPECT_EQ(search.search.builds(), builds + 1);
+    search.build(moved); // an ordinary build is made again
+    EXPECT_EQ(search.search.builds(), builds + 2);
 }
 
 } // namespace

@@ -39,12 +39,12 @@ struct TestScene {
         const Vec3 c = 0.5 * hi;
         std::mt19937 rng(11);
         std::uniform_real_distribution<double> u(-1, 1);
-        for (auto& x : s.fluid.position())
+        for (auto& x : test::fluidOf(s).particles.position())
             x = c + scale * (x - c) + jitter * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
-        s.search.build(s.fluid.position());
+        test::rebuild(s);
         zeroAcceleration();
     }
-    void zeroAcceleration() { std::fill(s.fluid.acceleration().begin(), s.fluid.acceleration().end(), Vec3::Zero()); }
+    void zeroAcceleration() { std::fill(test::fluidOf(s).particles.acceleration().begin(), test::fluidOf(s).particles.acceleration().end(), Vec3::Zero()); }
     template <class Base> std::unique_ptr<Base> model(const std::string& text, const std::string& solution = "") {
         dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(text, "sphSchemes.model")));
         const Dictionary& d = *dicts.back();
@@ -53,14 +53,14 @@ struct TestScene {
             dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(solution, "sphSolution.pressure")));
             sol = dicts.back().get();
         }
-        auto m = ModelRegistry::instance().create<Base>(d, s.physics, sol);
+        auto m = ModelRegistry::instance().create<Base>(d, s.physics, s.constants, sol);
         m->initialise(s);
         return m;
     }
     double avgCompression() const {
         double e = 0;
-        for (auto rho : s.fluid.density()) e += std::max<double>(0.0, (rho - s.physics.rho0) / s.physics.rho0);
-        return e / s.fluid.size();
+        for (auto rho : test::fluidOf(s).particles.density()) e += std::max<double>(0.0, (rho - s.physics.rho0) / s.physics.rho0);
+        return e / test::fluidOf(s).particles.size();
     }
 };
 
@@ -83,11 +83,11 @@ TEST(PositionBasedFluids, TheStepRealisesTheVerifiedPredictionAndConservesMoment
             auto p = sc.model<PressureModel>(k.type, tight);
             EXPECT_TRUE(p->isIterative());
             EXPECT_EQ(p->soundSpeed(sc.s.constants, sc.s.physics), 0);
-            p->computeDensity(sc.s);
+            p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
             const double before = sc.avgCompression();
             ASSERT_GT(before, 1e-2);
             const double dt = 1e-3;
-            p->addPressureAcceleration(sc.s, dt);
+            p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, dt));
             const SolverStats st = p->lastSolve();
             if (dim == 2 ? k.converges2D : k.converges3D) {
                 EXPECT_TRUE(st.converged) << k.type << " " << dim << "D";
@@ -97,7 +97,7 @@ TEST(PositionBasedFluids, TheStepRealisesTheVerifiedPredictionAndConservesMoment
             // the position correction is pairwise antisymmetric (s_corr too): no net force
             Vec3 total = Vec3::Zero();
             double scale = 0;
-            for (const auto& a : sc.s.fluid.acceleration()) {
+            for (const auto& a : test::fluidOf(sc.s).particles.acceleration()) {
                 total += a;
                 scale += a.norm();
             }
@@ -105,13 +105,13 @@ TEST(PositionBasedFluids, TheStepRealisesTheVerifiedPredictionAndConservesMoment
             EXPECT_LT(total.norm(), test::tol(1e-10, 32 * test::eps) * scale) << k.type << " " << dim << "D";
             // symplectic Euler with the returned acceleration lands on the predicted positions:
             // their density on the step's neighbour lists is the one the solver verified
-            auto& x = sc.s.fluid.position();
-            auto& v = sc.s.fluid.velocity();
+            auto& x = test::fluidOf(sc.s).particles.position();
+            auto& v = test::fluidOf(sc.s).particles.velocity();
             for (std::size_t i = 0; i < x.size(); ++i) {
-                v[i] += dt * sc.s.fluid.acceleration()[i];
+                v[i] += dt * test::fluidOf(sc.s).particles.acceleration()[i];
                 x[i] += dt * v[i];
             }
-            p->computeDensity(sc.s);
+            p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
             // float: densities and the stepped positions rounded to Scalar (a few eps per particle)
             EXPECT_NEAR(sc.avgCompression(), st.avgDensityError, test::tol(1e-12, 8 * test::eps)) << k.type << " " << dim << "D";
             std::cout << k.type << " " << dim << "D: average compression " << 100 * before << " % -> "
@@ -126,20 +126,20 @@ TEST(PositionBasedFluids, ClampedDensityCorrectsOnlyCompression) {
         TestScene sc(2);
         sc.block(16, 1.03);
         auto p = sc.model<PressureModel>(type, "maxDensityError 1e-4; minIterations 2; maxIterations 10;");
-        p->computeDensity(sc.s);
-        p->addPressureAcceleration(sc.s, 1e-3);
-        for (const auto& a : sc.s.fluid.acceleration()) ASSERT_EQ(a.norm(), 0.0) << type;
+        p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+        p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
+        for (const auto& a : test::fluidOf(sc.s).particles.acceleration()) ASSERT_EQ(a.norm(), 0.0) << type;
     }
     // the unclamped constraint (Macklin & Müller) pulls the expanded block together
     TestScene sc(2);
     sc.block(16, 1.03);
     auto p = sc.model<PressureModel>("type pbf; clampDensity no;", "maxDensityError 1e-4; minIterations 2; maxIterations 10;");
-    p->computeDensity(sc.s);
-    p->addPressureAcceleration(sc.s, 1e-3);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+    p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
     const Vec3 c(0.08, 0.08, 0);
     double inward = 0;
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i)
-        inward -= sc.s.fluid.acceleration()[i].dot(sc.s.fluid.position()[i] - c);
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i)
+        inward -= test::fluidOf(sc.s).particles.acceleration()[i].dot(test::fluidOf(sc.s).particles.position()[i] - c);
     EXPECT_GT(inward, 0);
 }
 
@@ -148,16 +148,16 @@ TEST(PositionBasedFluids, WarmStartAndOverRelaxationCutIterations) {
     auto iterations = [](const std::string& type, double& firstStep, double& secondStep, double& sameTimeAgain) {
         TestScene sc(2);
         sc.block(20, 0.99);
-        const std::vector<Vec3> x0 = sc.s.fluid.position();
+        const std::vector<Vec3> x0 = test::fluidOf(sc.s).particles.position();
         auto p = sc.model<PressureModel>(type, tight);
         auto solveAt = [&](double time) {
-            sc.s.fluid.position() = x0;
-            std::fill(sc.s.fluid.velocity().begin(), sc.s.fluid.velocity().end(), Vec3::Zero());
-            sc.s.search.build(x0);
+            test::fluidOf(sc.s).particles.position() = x0;
+            std::fill(test::fluidOf(sc.s).particles.velocity().begin(), test::fluidOf(sc.s).particles.velocity().end(), Vec3::Zero());
+            test::rebuild(sc.s);
             sc.zeroAcceleration();
             sc.s.time = time;
-            p->computeDensity(sc.s);
-            p->addPressureAcceleration(sc.s, 1e-3);
+            p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+            p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
             EXPECT_TRUE(p->lastSolve().converged);
             return double(p->lastSolve().iterations);
         };
@@ -227,15 +227,15 @@ TEST(RelaxedPbf, KeepsAHydrostaticColumnWithinEtaOfRestDensity) {
     sim.evaluate(sim.scene().time, Scalar(5e-3)); // the density at the final state
     const double rho0 = s.physics.rho0, H = 0.3;
     double avgErr = 0, maxErr = 0, vMax = 0, topFluid = 0;
-    for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-        const Vec3 x = s.fluid.position()[i];
+    for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+        const Vec3 x = test::fluidOf(s).particles.position()[i];
         ASSERT_GE(x.x(), 0.0);
         ASSERT_LE(x.x(), 0.2);
         ASSERT_GE(x.y(), 0.0);
-        const double e = std::max(0.0, (s.fluid.density()[i] - rho0) / rho0);
-        avgErr += e / s.fluid.size();
+        const double e = std::max(0.0, (test::fluidOf(s).particles.density()[i] - rho0) / rho0);
+        avgErr += e / test::fluidOf(s).particles.size();
         maxErr = std::max(maxErr, e);
-        vMax = std::max(vMax, double(s.fluid.velocity()[i].norm()));
+        vMax = std::max(vMax, double(test::fluidOf(s).particles.velocity()[i].norm()));
         topFluid = std::max(topFluid, double(x.y()));
     }
     std::cout << "relaxedPbf hydrostatic column: " << r.steps << " steps, " << r.averageIterations
@@ -259,17 +259,17 @@ TEST(VorticityConfinement, CurlOfARigidRotationAndNoForceWhereVorticityIsUniform
         const double dx = 0.01;
         const Vec3 c = Vec3::Constant(0.5 * n * dx).cwiseProduct(Vec3(1, 1, dim == 3 ? 1 : 0));
         const Vec3 omega = dim == 2 ? Vec3(0, 0, 3) : Vec3(1, -2, 3);
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i)
-            sc.s.fluid.velocity()[i] = omega.cross(Vec3(sc.s.fluid.position()[i] - c));
-        std::fill(sc.s.fluid.density().begin(), sc.s.fluid.density().end(), 1000.0);
+        for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i)
+            test::fluidOf(sc.s).particles.velocity()[i] = omega.cross(Vec3(test::fluidOf(sc.s).particles.position()[i] - c));
+        std::fill(test::fluidOf(sc.s).particles.density().begin(), test::fluidOf(sc.s).particles.density().end(), 1000.0);
         auto f = sc.model<ExtraForce>("type vorticityConfinement; epsilon 0.5;");
-        f->addAcceleration(sc.s, 1e-3);
-        const auto* w = sc.s.fluid.findVector("vorticity");
+        f->addAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
+        const auto* w = test::fluidOf(sc.s).particles.findVector("vorticity");
         ASSERT_NE(w, nullptr);
         // On a cubic lattice the SPH curl Σ_j V_j (v_i − v_j) × ∇_i W_ij of a rigid rotation is
         // exactly 2 μ Ω, μ = Σ_j V (−W'(r) r) x̂_j² the lattice moment (1 for a perfect kernel),
         // with W'(r)/r from the table the pair loops use
-        const double V = sc.s.fluid.particleMass() / 1000.0, h = sc.s.physics.supportRadius;
+        const double V = test::fluidOf(sc.s).particles.particleMass() / 1000.0, h = sc.s.constants.supportRadius;
         double mu = 0;
         for (int k = (dim == 3 ? -3 : 0); k <= (dim == 3 ? 3 : 0); ++k)
             for (int j = -3; j <= 3; ++j)
@@ -280,12 +280,12 @@ TEST(VorticityConfinement, CurlOfARigidRotationAndNoForceWhereVorticityIsUniform
         EXPECT_NEAR(mu, 1.0, 0.1);
         const double reach = 0.5 * n * dx - 2 * h; // neighbours with full neighbourhoods
         int checked = 0;
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-            if ((sc.s.fluid.position()[i] - c).cwiseAbs().maxCoeff() > reach) continue;
+        for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+            if ((test::fluidOf(sc.s).particles.position()[i] - c).cwiseAbs().maxCoeff() > reach) continue;
             ++checked;
             // float: velocity differences and pair sums rounded to Scalar
             EXPECT_LT(((*w)[i] - 2 * mu * omega).norm(), test::tol(1e-9, 1e-5) * omega.norm()) << dim << "D: curl of a rigid rotation";
-            EXPECT_EQ(sc.s.fluid.acceleration()[i].norm(), 0.0) << dim << "D: uniform vorticity, no confinement";
+            EXPECT_EQ(test::fluidOf(sc.s).particles.acceleration()[i].norm(), 0.0) << dim << "D: uniform vorticity, no confinement";
         }
         EXPECT_GT(checked, 3);
     }
@@ -297,21 +297,21 @@ TEST(VorticityConfinement, AddsRotationalEnergyToAVortex) {
     sc.block(30, 1.0);
     const Vec3 c(0.15, 0.15, 0);
     const double gamma = 0.05, core = 0.03;
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) { // Lamb–Oseen vortex
-        const Vec3 r = sc.s.fluid.position()[i] - c;
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) { // Lamb–Oseen vortex
+        const Vec3 r = test::fluidOf(sc.s).particles.position()[i] - c;
         const double r2 = r.squaredNorm();
         const double vt = r2 > 0 ? gamma / (2 * M_PI * std::sqrt(r2)) * (1 - std::exp(-r2 / (core * core))) : 0;
-        sc.s.fluid.velocity()[i] = r2 > 0 ? Vec3(vt * Vec3(-r.y(), r.x(), 0) / std::sqrt(r2)) : Vec3::Zero();
+        test::fluidOf(sc.s).particles.velocity()[i] = r2 > 0 ? Vec3(vt * Vec3(-r.y(), r.x(), 0) / std::sqrt(r2)) : Vec3::Zero();
     }
-    std::fill(sc.s.fluid.density().begin(), sc.s.fluid.density().end(), 1000.0);
+    std::fill(test::fluidOf(sc.s).particles.density().begin(), test::fluidOf(sc.s).particles.density().end(), 1000.0);
     auto f = sc.model<ExtraForce>("type vorticityConfinement; epsilon 0.01;");
-    f->addAcceleration(sc.s, 1e-3);
+    f->addAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
     double power = 0, aligned = 0, total = 0;
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-        const Vec3 r = sc.s.fluid.position()[i] - c;
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+        const Vec3 r = test::fluidOf(sc.s).particles.position()[i] - c;
         if (r.norm() > 0.1) continue; // free edges of the block
-        const Vec3& a = sc.s.fluid.acceleration()[i];
-        power += a.dot(sc.s.fluid.velocity()[i]);
+        const Vec3& a = test::fluidOf(sc.s).particles.acceleration()[i];
+        power += a.dot(test::fluidOf(sc.s).particles.velocity()[i]);
         aligned += std::abs(a.dot(r)); // the force is azimuthal: no radial part
         total += a.norm() * r.norm();
     }

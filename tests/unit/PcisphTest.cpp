@@ -42,8 +42,8 @@ struct Scene : test::BlockScene {
         const double dx = s.physics.particleSpacing;
         const Vec3 c(0.5 * n * dx, 0.5 * n * dx, s.physics.dimension == 3 ? 0.5 * n * dx : 0);
         const double half = (0.5 * n - layers) * dx;
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-            const Vec3 d = (s.fluid.position()[i] - c).cwiseAbs();
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+            const Vec3 d = (test::fluidOf(s).particles.position()[i] - c).cwiseAbs();
             if (d.maxCoeff() < half) ids.push_back(i);
         }
         return ids;
@@ -58,7 +58,7 @@ TEST(Pcisph, DeltaMatchesHandComputationOn2DAnd3DLattices) {
         Scene sc(dim, "cubicSpline", 1.5);
         const int n = dim == 2 ? 12 : 8;
         sc.block(n, 0.995); // compressed: interior density about 1 % (2D) / 1.5 % (3D) above ρ0
-        const double dx = 0.01, h = 1.5 * dx, rho0 = 1000, m = sc.s.fluid.particleMass();
+        const double dx = 0.01, h = 1.5 * dx, rho0 = 1000, m = test::fluidOf(sc.s).particles.particleMass();
         const double w1 = cubicSplineDW(dx, h, dim), w2 = cubicSplineDW(std::sqrt(2.0) * dx, h, dim);
         const double sumSquares = dim == 2 ? 4 * w1 * w1 + 4 * w2 * w2 : 6 * w1 * w1 + 12 * w2 * w2;
         // one correction from the first prediction: with v = 0 and no other force, x* = x, so
@@ -67,18 +67,18 @@ TEST(Pcisph, DeltaMatchesHandComputationOn2DAnd3DLattices) {
                               "maxDensityError 0; minIterations 1; maxIterations 1;");
         for (double dt : {1e-3, 5e-4}) {
             const double deltaHand = rho0 * rho0 / (2 * dt * dt * m * m * sumSquares);
-            p->computeDensity(sc.s);
-            std::fill(sc.s.fluid.acceleration().begin(), sc.s.fluid.acceleration().end(), Vec3::Zero());
-            p->addPressureAcceleration(sc.s, dt);
+            p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+            std::fill(test::fluidOf(sc.s).particles.acceleration().begin(), test::fluidOf(sc.s).particles.acceleration().end(), Vec3::Zero());
+            p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, dt));
             EXPECT_EQ(p->lastSolve().iterations, 1);
             const auto ids = sc.interior(n, 2);
             ASSERT_GT(ids.size(), 10u);
             for (std::size_t i : ids) {
-                const double rhoErr = sc.s.fluid.density()[i] - rho0;
+                const double rhoErr = test::fluidOf(sc.s).particles.density()[i] - rho0;
                 ASSERT_GT(rhoErr, 0) << dim << "D: the interior must be compressed";
                 // float: δ and ρ − ρ0 (≈ 7 out of 1000) carry the rounding of ρ
-                EXPECT_NEAR(sc.s.fluid.pressure()[i] / (deltaHand * rhoErr), 1.0, test::tol(1e-6, 1e-5))
-                    << dim << "D, dt " << dt << ": pressure " << sc.s.fluid.pressure()[i] << " vs delta "
+                EXPECT_NEAR(test::fluidOf(sc.s).particles.pressure()[i] / (deltaHand * rhoErr), 1.0, test::tol(1e-6, 1e-5))
+                    << dim << "D, dt " << dt << ": pressure " << test::fluidOf(sc.s).particles.pressure()[i] << " vs delta "
                     << deltaHand << " x " << rhoErr;
             }
         }
@@ -93,11 +93,11 @@ TEST(Pcisph, ConvergesToMaximumDensityErrorAndTheStepRealisesThePrediction) {
         sc.block(n, 0.99);
         const double eta = 1e-3, dt = 1e-3;
         auto p = sc.pressure("type pcisph;", "maxDensityError 0.001; minIterations 3; maxIterations 200;");
-        p->computeDensity(sc.s);
+        p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
         const double before = sc.maxCompression();
         ASSERT_GT(before, 10 * eta);
-        std::fill(sc.s.fluid.acceleration().begin(), sc.s.fluid.acceleration().end(), Vec3::Zero());
-        p->addPressureAcceleration(sc.s, dt);
+        std::fill(test::fluidOf(sc.s).particles.acceleration().begin(), test::fluidOf(sc.s).particles.acceleration().end(), Vec3::Zero());
+        p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, dt));
         const SolverStats st = p->lastSolve();
         EXPECT_TRUE(st.converged);
         EXPECT_GE(st.iterations, 3);
@@ -107,7 +107,7 @@ TEST(Pcisph, ConvergesToMaximumDensityErrorAndTheStepRealisesThePrediction) {
         // pressure forces alone: total momentum unchanged
         Vec3 total = Vec3::Zero();
         double scale = 0;
-        for (const auto& a : sc.s.fluid.acceleration()) {
+        for (const auto& a : test::fluidOf(sc.s).particles.acceleration()) {
             total += a;
             scale += a.norm();
         }
@@ -148,10 +148,10 @@ TEST(Pcisph, ConvergesWithAWideSupport) {
     Scene sc(2, "wendlandC2", 4.0);
     sc.block(24, 0.99);
     auto p = sc.pressure("type pcisph;", "maxDensityError 0.001; minIterations 3; maxIterations 200;");
-    p->computeDensity(sc.s);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
     ASSERT_GT(sc.maxCompression(), 0.01);
-    std::fill(sc.s.fluid.acceleration().begin(), sc.s.fluid.acceleration().end(), Vec3::Zero());
-    p->addPressureAcceleration(sc.s, 1e-3);
+    std::fill(test::fluidOf(sc.s).particles.acceleration().begin(), test::fluidOf(sc.s).particles.acceleration().end(), Vec3::Zero());
+    p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
     const SolverStats st = p->lastSolve();
     EXPECT_TRUE(st.converged);
     EXPECT_LE(st.maxDensityError, 0.001);
@@ -166,8 +166,8 @@ TEST(Pcisph, StopsAtMaxIterationsAndSaysItDidNotConverge) {
     auto p = sc.pressure("type pcisph;", "maxDensityError 1e-9; minIterations 3; maxIterations 4;");
     EXPECT_TRUE(p->isIterative());
     EXPECT_EQ(p->soundSpeed(sc.s.constants, sc.s.physics), 0);
-    p->computeDensity(sc.s);
-    p->addPressureAcceleration(sc.s, 1e-3);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+    p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-3));
     EXPECT_EQ(p->lastSolve().iterations, 4);
     EXPECT_FALSE(p->lastSolve().converged);
     EXPECT_GT(p->lastSolve().maxDensityError, 1e-9);
@@ -222,20 +222,20 @@ TEST(Pcisph, KeepsAHydrostaticColumnWithinEtaOfRestDensity) {
     auto& s = sim.scene();
     // the density at the final state
     sim.evaluate(sim.scene().time, Scalar(2e-3));
-    const double rho0 = s.physics.rho0, H = 0.3, g = 9.81, h = s.physics.supportRadius;
+    const double rho0 = s.physics.rho0, H = 0.3, g = 9.81, h = s.constants.supportRadius;
     double maxErr = 0, interiorDev = 0, vMax = 0, pBottom = 0, zBottom = 0;
     int nBottom = 0;
-    for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-        const Vec3 x = s.fluid.position()[i];
+    for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+        const Vec3 x = test::fluidOf(s).particles.position()[i];
         ASSERT_GE(x.x(), 0.0);
         ASSERT_LE(x.x(), 0.2);
         ASSERT_GE(x.y(), 0.0);
-        const double rho = s.fluid.density()[i];
+        const double rho = test::fluidOf(s).particles.density()[i];
         maxErr = std::max(maxErr, (rho - rho0) / rho0);
         if (x.y() < H - h) interiorDev = std::max(interiorDev, std::abs(rho - rho0) / rho0);
-        vMax = std::max(vMax, double(s.fluid.velocity()[i].norm()));
+        vMax = std::max(vMax, double(test::fluidOf(s).particles.velocity()[i].norm()));
         if (x.y() < s.physics.particleSpacing) {
-            pBottom += s.fluid.pressure()[i];
+            pBottom += test::fluidOf(s).particles.pressure()[i];
             zBottom += x.y();
             ++nBottom;
         }
@@ -249,9 +249,9 @@ TEST(Pcisph, KeepsAHydrostaticColumnWithinEtaOfRestDensity) {
     for (double zr : {0.05, 0.1, 0.15, 0.2, 0.25}) {
         double pp = 0;
         int nn = 0;
-        for (std::size_t i = 0; i < s.fluid.size(); ++i)
-            if (std::abs(s.fluid.position()[i].y() - zr) < 0.005) {
-                pp += s.fluid.pressure()[i];
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i)
+            if (std::abs(test::fluidOf(s).particles.position()[i].y() - zr) < 0.005) {
+                pp += test::fluidOf(s).particles.pressure()[i];
                 ++nn;
             }
         ASSERT_GT(nn, 0);
@@ -291,7 +291,7 @@ TEST(Pcisph, RunsTheBenchmarkDamBreakAtTwoMillisecondsThroughTheWallImpact) {
     EXPECT_LT(r.maxDensityError, 0.05); // 1.2–1.3 % (single precision 1.1–3.4 %, 7.0 % before the rising-error stop); 22 % when it blew up
     EXPECT_LT(r.averageIterations, 5.0); // 3.6
     double vMax = 0;
-    for (const Vec3& v : sim.scene().fluid.velocity()) vMax = std::max(vMax, double(v.norm()));
+    for (const Vec3& v : test::fluidOf(sim.scene()).particles.velocity()) vMax = std::max(vMax, double(v.norm()));
     // The front runs at about 2 sqrt(g H) = 6 m/s. At the impact (Δt = 2 ms) a few particles
     // are pressed into the two-layer wall (up to 0.011 m past its face, in double precision too)
     // and pushed out again; whether one leaves a corner fast just before t = 0.4 turns on

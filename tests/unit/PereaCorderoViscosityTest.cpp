@@ -30,25 +30,25 @@ struct TestScene {
         test::fillLattice(s, *kernel, Vec3::Zero(), Vec3(n * dx, n * dx, dim == 3 ? n * dx : 0));
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-1, 1);
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-            s.fluid.position()[i] += jitter * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
-            s.fluid.velocity()[i] = speed * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+            test::fluidOf(s).particles.position()[i] += jitter * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
+            test::fluidOf(s).particles.velocity()[i] = speed * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
         }
-        s.search.build(s.fluid.position());
-        density->computeDensity(s);
+        test::rebuild(s);
+        density->computeDensity(s, test::fluidOf(s), test::stepOf(s));
     }
     const std::vector<Vec3>& accelerate(const std::string& dict, double dt = 1e-4) {
         auto v = test::createModel<ViscosityModel>(dict, s.physics);
         v->initialise(s);
-        for (auto& a : s.fluid.acceleration()) a.setZero();
-        v->addAcceleration(s, dt);
-        return s.fluid.acceleration();
+        for (auto& a : test::fluidOf(s).particles.acceleration()) a.setZero();
+        v->addAcceleration(s, test::fluidOf(s), test::stepOf(s, dt));
+        return test::fluidOf(s).particles.acceleration();
     }
     // |Σ m a| / Σ m |a|
     double netForce() const {
         Vec3 f = Vec3::Zero();
         double total = 0;
-        for (const auto& a : s.fluid.acceleration()) {
+        for (const auto& a : test::fluidOf(s).particles.acceleration()) {
             f += a;
             total += a.norm();
         }
@@ -56,7 +56,7 @@ struct TestScene {
     }
     double maxAcceleration() const {
         double m = 0;
-        for (const auto& a : s.fluid.acceleration()) m = std::max<double>(m, a.norm());
+        for (const auto& a : test::fluidOf(s).particles.acceleration()) m = std::max<double>(m, a.norm());
         return m;
     }
 };
@@ -89,7 +89,7 @@ TEST(PereaCorderoViscosity, UniformTranslationFeelsNoForceInTheDifferenceForm) {
         for (const auto& k : kernels) {
             TestScene sc(dim, k);
             sc.block(dim == 2 ? 12 : 7, 0.1, 0.0);
-            for (auto& v : sc.s.fluid.velocity()) v = Vec3(1.5, -0.5, dim == 3 ? 0.7 : 0.0);
+            for (auto& v : test::fluidOf(sc.s).particles.velocity()) v = Vec3(1.5, -0.5, dim == 3 ? 0.7 : 0.0);
             sc.accelerate("type pereaCordero; dampingScale 0.5;");
             EXPECT_EQ(sc.maxAcceleration(), 0.0) << "difference form, " << k << " " << dim << "D";
             sc.accelerate("type xsph;");
@@ -109,14 +109,14 @@ double laplacianFactor(int dim, const std::string& kernel, double supportRatio) 
     const int n = dim == 2 ? 16 : 11;
     sc.block(n, 0.0, 0.0);
     const Vec3 centre = Vec3::Constant(n * 0.01 / 2 + 0.005);
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-        const double y = sc.s.fluid.position()[i].y() - centre.y();
-        sc.s.fluid.velocity()[i] = Vec3(c * y * y, 0, 0);
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+        const double y = test::fluidOf(sc.s).particles.position()[i].y() - centre.y();
+        test::fluidOf(sc.s).particles.velocity()[i] = Vec3(c * y * y, 0, 0);
     }
     const auto& a = sc.accelerate("type pereaCordero; dampingScale 1e12;");
     std::size_t best = 0;
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i)
-        if ((sc.s.fluid.position()[i] - centre).norm() < (sc.s.fluid.position()[best] - centre).norm()) best = i;
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i)
+        if ((test::fluidOf(sc.s).particles.position()[i] - centre).norm() < (test::fluidOf(sc.s).particles.position()[best] - centre).norm()) best = i;
     EXPECT_LT(std::abs(a[best].y()), 1e-9 * 2 * c * nu);
     return a[best].x() / (2 * c * nu);
 }
@@ -155,17 +155,17 @@ TEST(PereaCorderoViscosity, CheckerboardModeAtTwiceTheSpacing) {
         const int n = 12;
         sc.block(n, 0.0, 0.0);
         const double dx = sc.s.physics.particleSpacing;
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-            const Vec3& x = sc.s.fluid.position()[i];
+        for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+            const Vec3& x = test::fluidOf(sc.s).particles.position()[i];
             const long cx = std::lround(x.x() / dx - 0.5), cy = std::lround(x.y() / dx - 0.5);
-            sc.s.fluid.velocity()[i] = Vec3((cx + cy) % 2 == 0 ? 1.0 : -1.0, 0, 0);
+            test::fluidOf(sc.s).particles.velocity()[i] = Vec3((cx + cy) % 2 == 0 ? 1.0 : -1.0, 0, 0);
         }
         const auto& a = sc.accelerate("type pereaCordero; dampingScale 1e12;");
         double power = 0; // Σ v·a over particles with a full neighbourhood
         for (std::size_t i = 0; i < a.size(); ++i) {
-            const Vec3& x = sc.s.fluid.position()[i];
+            const Vec3& x = test::fluidOf(sc.s).particles.position()[i];
             if (x.x() > 3 * dx && x.x() < (n - 3) * dx && x.y() > 3 * dx && x.y() < (n - 3) * dx)
-                power += sc.s.fluid.velocity()[i].dot(a[i]);
+                power += test::fluidOf(sc.s).particles.velocity()[i].dot(a[i]);
         }
         std::cout << k << ", h = 2 dx, checkerboard mode: sum v.a = " << power << (power > 0 ? " (grows)" : " (damped)") << "\n";
         if (k == "sinc2") EXPECT_GT(power, 0.0);
@@ -178,13 +178,13 @@ TEST(PereaCorderoViscosity, DampingFactorGammaAgainstAHandComputation) {
     // Γ = exp(−2 |v1 − v0| / (U (ρ0 ρ1/ρ_ref²) (r/h)))
     TestScene sc(2, "sinc2");
     test::fillLattice(sc.s, *sc.kernel, Vec3::Zero(), Vec3(0.02, 0.01, 0));
-    const double r = 0.013, h = sc.s.physics.supportRadius, rhoRef = sc.s.physics.rho0, m = sc.s.fluid.particleMass();
-    sc.s.fluid.position() = {Vec3(0, 0, 0), Vec3(r * 0.6, r * 0.8, 0)};
-    sc.s.fluid.velocity() = {Vec3(0.1, 0, 0), Vec3(-0.05, 0.2, 0)};
-    sc.s.fluid.density() = {1003, 995};
-    sc.s.search.build(sc.s.fluid.position());
+    const double r = 0.013, h = sc.s.constants.supportRadius, rhoRef = sc.s.physics.rho0, m = test::fluidOf(sc.s).particles.particleMass();
+    test::fluidOf(sc.s).particles.position() = {Vec3(0, 0, 0), Vec3(r * 0.6, r * 0.8, 0)};
+    test::fluidOf(sc.s).particles.velocity() = {Vec3(0.1, 0, 0), Vec3(-0.05, 0.2, 0)};
+    test::fluidOf(sc.s).particles.density() = {1003, 995};
+    test::rebuild(sc.s);
     const double mu = 0.26, rho0 = 1003, rho1 = 995;
-    const Vec3 dv = sc.s.fluid.velocity()[1] - sc.s.fluid.velocity()[0];
+    const Vec3 dv = test::fluidOf(sc.s).particles.velocity()[1] - test::fluidOf(sc.s).particles.velocity()[0];
     for (double U : {0.05, 0.5, 5.0}) {
         const auto& a = sc.accelerate("type pereaCordero; mu 0.26; dampingScale " + std::to_string(U) + ";");
         const double gamma = std::exp(-2 * dv.norm() / (U * (rho0 * rho1 / (rhoRef * rhoRef)) * (r / h)));
@@ -201,7 +201,7 @@ TEST(PereaCorderoViscosity, DampingFactorGammaAgainstAHandComputation) {
     // form paper: a_0 = m (μ v1/ρ1² + μ v0/ρ0²) ∇²W Γ
     const auto& b = sc.accelerate("type pereaCordero; form paper; mu 0.26; dampingScale 0.5;");
     const double gamma = std::exp(-2 * dv.norm() / (0.5 * (rho0 * rho1 / (rhoRef * rhoRef)) * (r / h)));
-    const Vec3 paper = m * (mu * sc.s.fluid.velocity()[1] / (rho1 * rho1) + mu * sc.s.fluid.velocity()[0] / (rho0 * rho0)) *
+    const Vec3 paper = m * (mu * test::fluidOf(sc.s).particles.velocity()[1] / (rho1 * rho1) + mu * test::fluidOf(sc.s).particles.velocity()[0] / (rho0 * rho0)) *
                        sc.kernel->laplacian(r) * gamma;
     EXPECT_LT((b[0] - paper).norm(), 1e-5 * paper.norm());
 }
@@ -212,7 +212,7 @@ TEST(PereaCorderoViscosity, DissipatesWithThePositiveViscosityKernelLaplacian) {
     sc.block(14, 0.1, 1.0);
     const auto& a = sc.accelerate("type pereaCordero; dampingScale 0.5;");
     double power = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) power += sc.s.fluid.velocity()[i].dot(a[i]);
+    for (std::size_t i = 0; i < a.size(); ++i) power += test::fluidOf(sc.s).particles.velocity()[i].dot(a[i]);
     EXPECT_LT(power, 0.0);
 }
 
@@ -224,7 +224,11 @@ TEST(PereaCorderoViscosity, OptionsAndErrors) {
     EXPECT_THROW(test::createModel<ViscosityModel>("type pereaCordero; mu 0.26; form sum;", physics), InputError);
     EXPECT_THROW(test::createModel<ViscosityModel>("type pereaCordero; mu 0.26; dampingScale 0;", physics), InputError);
     auto v = test::createModel<ViscosityModel>("type pereaCordero; mu 0.26;", physics);
-    EXPECT_NEAR(v->timeStepViscosity(), 0.26 / physics.rho0, test::tol(1e-15, test::eps * 0.26 / physics.rho0)); // float: in Scalar
+    // the viscous step limit of ν = μ/ρ0: 0.125 (h/2)² / ν
+    Scene s;
+    s.constants = test::constantsFor(physics);
+    const double h = s.constants.supportRadius, limit = 0.125 * 0.25 * h * h / (0.26 / physics.rho0);
+    EXPECT_NEAR(v->maxTimeStep(s), limit, test::tol(1e-12, 1e-5) * limit);
 }
 
 TEST(Xsph, VelocityChangeOverAStepMatchesAHandComputation) {
@@ -233,10 +237,10 @@ TEST(Xsph, VelocityChangeOverAStepMatchesAHandComputation) {
     sc.block(12, 0.1, 1.0);
     const double dt = 2e-4, c = 0.05;
     const auto& a = sc.accelerate("type xsph; c 0.05;", dt);
-    const auto& x = sc.s.fluid.position();
-    const auto& v = sc.s.fluid.velocity();
-    const auto& rho = sc.s.fluid.density();
-    const double m = sc.s.fluid.particleMass(), h = sc.s.physics.supportRadius;
+    const auto& x = test::fluidOf(sc.s).particles.position();
+    const auto& v = test::fluidOf(sc.s).particles.velocity();
+    const auto& rho = test::fluidOf(sc.s).particles.density();
+    const double m = test::fluidOf(sc.s).particles.particleMass(), h = sc.s.constants.supportRadius;
     double power = 0, worst = 0, scale = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
         Vec3 dv = Vec3::Zero();

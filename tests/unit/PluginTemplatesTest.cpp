@@ -28,6 +28,8 @@ TEST(PluginTemplates, EveryKindHasATemplateThatLoadsAndMakesItsModel) {
     EXPECT_NE(test::createModel<FunctionObject>("type " + load("functionObject") + ";", physics), nullptr);
     EXPECT_NE(test::createModel<DensityDiffusion>("type " + load("densityDiffusion") + ";", physics), nullptr);
     EXPECT_NE(test::createModel<ShiftingModel>("type " + load("shifting") + ";", physics), nullptr);
+    EXPECT_NE(test::createModel<PassiveModel>("type " + load("passive") + "; min (0 0 0); max (1 1 0); spacing 0.1;", physics),
+              nullptr);
     EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), ModelRegistry::kinds().size());
 }
 
@@ -36,7 +38,7 @@ TEST(PluginTemplates, KernelTemplateIsWendlandC2) {
         const auto physics = test::physicsFor(dim);
         const auto copy = test::createModel<Kernel>("type " + load("kernel") + ";", physics);
         const auto real = test::createModel<Kernel>("type wendlandC2;", physics);
-        const Scalar h = physics.supportRadius;
+        const Scalar h = test::constantsFor(physics).supportRadius;
         for (Scalar r : {Scalar(0), Scalar(0.1) * h, Scalar(0.5) * h, Scalar(0.9) * h, h}) {
             EXPECT_SCALAR_EQ(copy->W(r), real->W(r)) << "dim " << dim << " r " << r;
             EXPECT_SCALAR_EQ(copy->dWdr(r), real->dWdr(r)) << "dim " << dim << " r " << r;

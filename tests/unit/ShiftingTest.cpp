@@ -36,10 +36,11 @@ struct ShiftScene {
         periodic.axis[0] = true;
         periodic.axis[1] = periodicY;
         periodic.length = Vec3(nx * dx, ny * dx, 0);
-        const Scalar margin = 4 * s.physics.supportRadius;
-        s.search.setup(s.physics.supportRadius, 2, Vec3(-margin, -margin, 0),
+        const Scalar margin = 4 * s.constants.supportRadius;
+        s.search.setup(s.constants.supportRadius, 2, Vec3(-margin, -margin, 0),
                        Vec3(nx * dx + margin, ny * dx + margin, 0), periodic);
-        s.search.build(s.fluid.position());
+        s.registerWithSearch(test::fluidOf(s));
+        test::rebuild(s);
     }
     // Walls of 'layers' rows below the fluid (and above it when 'top'), with their own density
     // ρ0 and the fluid particle mass (as adami gives them).
@@ -52,43 +53,44 @@ struct ShiftScene {
             }
         test::addWallSystem(s, "bottom", below);
         if (top) test::addWallSystem(s, "top", above);
-        test::setWallMasses(s, s.fluid.particleMass());
-        for (auto& w : s.walls) w.pressureMirrored = false; // their own density ρ0
-        s.search.build(s.fluid.position());
+        test::setWallMasses(s, test::fluidOf(s).particles.particleMass());
+        for (ParticleSystem& w : test::walls(s)) w.pressureMirrored = false; // their own density ρ0
+        test::rebuild(s);
     }
     void jitter(double amplitude, unsigned seed = 3) {
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-1, 1);
-        for (auto& x : s.fluid.position()) x += amplitude * dx * Vec3(u(rng), u(rng), 0);
+        for (auto& x : test::fluidOf(s).particles.position()) x += amplitude * dx * Vec3(u(rng), u(rng), 0);
         wrap();
     }
     void wrap() {
-        for (auto& x : s.fluid.position()) s.search.periodicity().wrap(x);
-        s.search.build(s.fluid.position());
+        for (auto& x : test::fluidOf(s).particles.position()) s.search.periodicity().wrap(x);
+        test::rebuild(s);
     }
     std::unique_ptr<ShiftingModel> model(const std::string& text) {
         dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(text, "sphSchemes.shifting")));
-        auto m = ModelRegistry::instance().create<ShiftingModel>(*dicts.back(), s.physics);
+        auto m = ModelRegistry::instance().create<ShiftingModel>(*dicts.back(), s.physics, s.constants);
+        test::fluidOf(s).particles.addVector("shiftingVelocity", {false, true}); // the core's field
         m->initialise(s);
         return m;
     }
-    const std::vector<Vec3>& shift() { return *s.fluid.findVector("shiftingVelocity"); }
+    const std::vector<Vec3>& shift() { return *test::fluidOf(s).particles.findVector("shiftingVelocity"); }
     // a step of the CFL limit the core takes, maxCo 0.15 on the support radius
-    double dt() const { return 0.15 * s.physics.supportRadius / c0; }
+    double dt() const { return 0.15 * s.constants.supportRadius / c0; }
     // RMS of the relative deviation of the summation density (fluid and walls) from ρ0: zero on
     // the regular lattice, the disorder measure
     double disorder() const {
         std::vector<Scalar> rho;
-        summationDensity(s, s.fluid.position(), rho);
+        summationDensity(s, test::fluidOf(s), test::fluidOf(s).particles.position(), rho);
         double sum = 0;
         for (Scalar r : rho) sum += (r / rho0 - 1) * (r / rho0 - 1);
         return std::sqrt(sum / rho.size());
     }
     // advances the positions by Δt δv only (no forces), as the integrators' drift does
     void drift(ShiftingModel& m) {
-        m.computeShift(s, Scalar(dt()));
+        m.computeShift(s, test::fluidOf(s), test::stepOf(s, Scalar(dt())));
         const auto& dv = shift();
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) s.fluid.position()[i] += dt() * dv[i];
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) test::fluidOf(s).particles.position()[i] += dt() * dv[i];
         wrap();
     }
 };
@@ -119,23 +121,23 @@ TEST_P(ShiftingModels, ShiftChangesNoMomentum) {
     sc.jitter(0.2);
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1, 1);
-    for (auto& v : sc.s.fluid.velocity()) v = Vec3(u(rng), u(rng), 0);
+    for (auto& v : test::fluidOf(sc.s).particles.velocity()) v = Vec3(u(rng), u(rng), 0);
     std::vector<Scalar> rho;
-    summationDensity(sc.s, sc.s.fluid.position(), rho);
-    sc.s.fluid.density() = rho;
-    const auto velocities = sc.s.fluid.velocity();
-    for (auto& a : sc.s.fluid.acceleration()) a.setZero();
+    summationDensity(sc.s, test::fluidOf(sc.s), test::fluidOf(sc.s).particles.position(), rho);
+    test::fluidOf(sc.s).particles.density() = rho;
+    const auto velocities = test::fluidOf(sc.s).particles.velocity();
+    for (auto& a : test::fluidOf(sc.s).particles.acceleration()) a.setZero();
     auto m = sc.model(GetParam());
-    m->computeShift(sc.s, Scalar(sc.dt()));
+    m->computeShift(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, Scalar(sc.dt())));
     Vec3 force = Vec3::Zero(), transport = Vec3::Zero();
     double forceScale = 0, transportScale = 0;
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-        force += sc.s.fluid.acceleration()[i];
-        forceScale += sc.s.fluid.acceleration()[i].norm();
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+        force += test::fluidOf(sc.s).particles.acceleration()[i];
+        forceScale += test::fluidOf(sc.s).particles.acceleration()[i].norm();
         transport += sc.shift()[i];
         transportScale += sc.shift()[i].norm();
     }
-    EXPECT_EQ(sc.s.fluid.velocity(), velocities); // the shift moves particles, it is no force
+    EXPECT_EQ(test::fluidOf(sc.s).particles.velocity(), velocities); // the shift moves particles, it is no force
     EXPECT_GT(transportScale, 0);
     // pairwise antisymmetric: neither the extra stress (transportVelocity) nor the shift moves
     // the centre of mass
@@ -148,14 +150,14 @@ TEST_P(ShiftingModels, ShiftChangesNoMomentum) {
 
 TEST_P(ShiftingModels, UniformFlowIsNotShifted) {
     ShiftScene sc(20, 20, true);
-    for (auto& v : sc.s.fluid.velocity()) v = Vec3(1, 0.5, 0);
-    for (auto& a : sc.s.fluid.acceleration()) a.setZero();
+    for (auto& v : test::fluidOf(sc.s).particles.velocity()) v = Vec3(1, 0.5, 0);
+    for (auto& a : test::fluidOf(sc.s).particles.acceleration()) a.setZero();
     auto m = sc.model(GetParam());
-    m->computeShift(sc.s, Scalar(sc.dt()));
+    m->computeShift(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, Scalar(sc.dt())));
     double largest = 0, largestForce = 0;
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
         largest = std::max(largest, double(sc.shift()[i].norm()));
-        largestForce = std::max(largestForce, double(sc.s.fluid.acceleration()[i].norm()));
+        largestForce = std::max(largestForce, double(test::fluidOf(sc.s).particles.acceleration()[i].norm()));
     }
     EXPECT_LT(largest, test::tol(1e-10, 1e-4)) << "m/s, against a flow of 1.1 m/s";
     EXPECT_LT(largestForce, test::tol(1e-8, 1e-2)) << "m/s^2";
@@ -167,7 +169,7 @@ TEST_P(ShiftingModels, WallParticlesCompleteTheConcentration) {
     ShiftScene sc(20, 12, false);
     sc.addWalls(3, true);
     auto m = sc.model(GetParam());
-    m->computeShift(sc.s, Scalar(sc.dt()));
+    m->computeShift(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, Scalar(sc.dt())));
     double largest = 0;
     for (const auto& dv : sc.shift()) largest = std::max(largest, double(dv.norm()));
     EXPECT_LT(largest, test::tol(1e-10, 1e-4));
@@ -183,16 +185,16 @@ TEST(TransportVelocity, BackgroundPressureDefaultsToRho0C0Squared) {
     b.jitter(0.2);
     auto ma = a.model("type transportVelocity;");
     auto mb = b.model("type transportVelocity; backgroundPressure " + std::to_string(rho0 * c0 * c0) + ";");
-    ma->computeShift(a.s, Scalar(a.dt()));
-    mb->computeShift(b.s, Scalar(b.dt()));
-    for (std::size_t i = 0; i < a.s.fluid.size(); i += 13)
+    ma->computeShift(a.s, test::fluidOf(a.s), test::stepOf(a.s, Scalar(a.dt())));
+    mb->computeShift(b.s, test::fluidOf(b.s), test::stepOf(b.s, Scalar(b.dt())));
+    for (std::size_t i = 0; i < test::fluidOf(a.s).particles.size(); i += 13)
         EXPECT_NEAR(a.shift()[i].x(), b.shift()[i].x(), 1e-12 + 1e-9 * std::abs(b.shift()[i].x()));
     // and it is the gradient of the concentration: particle 0 moved right is pushed back left
     ShiftScene c(20, 20, true);
-    c.s.fluid.position()[0].x() += 0.2 * dx;
-    c.s.search.build(c.s.fluid.position());
+    test::fluidOf(c.s).particles.position()[0].x() += 0.2 * dx;
+    test::rebuild(c.s);
     auto mc = c.model("type transportVelocity;");
-    mc->computeShift(c.s, Scalar(c.dt()));
+    mc->computeShift(c.s, test::fluidOf(c.s), test::stepOf(c.s, Scalar(c.dt())));
     EXPECT_LT(c.shift()[0].x(), 0);
     EXPECT_NEAR(c.shift()[0].y(), 0, test::tol(1e-9, 1e-4) * std::abs(c.shift()[0].x())); // float: rounding of the sums
 }
@@ -202,7 +204,7 @@ struct SurfaceScene : ShiftScene {
     SurfaceScene() : ShiftScene(24, 12, false) { addWalls(3, false); }
     double top() const {
         double y = -1;
-        for (const auto& x : s.fluid.position()) y = std::max(y, double(x.y()));
+        for (const auto& x : test::fluidOf(s).particles.position()) y = std::max(y, double(x.y()));
         return y;
     }
 };
@@ -217,22 +219,22 @@ TEST(DeltaPlus, FreeSurfaceParticlesAreNotPushedOut) {
         SurfaceScene bare;
         bare.jitter(0.1);
         auto m = bare.model(deltaPlus + " freeSurface no;");
-        m->computeShift(bare.s, Scalar(bare.dt()));
+        m->computeShift(bare.s, test::fluidOf(bare.s), test::stepOf(bare.s, Scalar(bare.dt())));
         double outward = 0;
-        for (std::size_t i = 0; i < bare.s.fluid.size(); ++i)
-            if (bare.s.fluid.position()[i].y() > surface - 0.5 * dx) outward += bare.shift()[i].y();
+        for (std::size_t i = 0; i < test::fluidOf(bare.s).particles.size(); ++i)
+            if (test::fluidOf(bare.s).particles.position()[i].y() > surface - 0.5 * dx) outward += bare.shift()[i].y();
         EXPECT_GT(outward, 0);
         for (int step = 0; step < 100; ++step) bare.drift(*m);
         EXPECT_GT(bare.top(), surface + 0.3 * dx) << "plain shifting sprays the surface";
     }
     auto m = sc.model(deltaPlus);
     const double top0 = sc.top();
-    m->computeShift(sc.s, Scalar(sc.dt()));
-    const auto& zone = *sc.s.fluid.findScalar("shiftingZone");
-    const auto& normal = *sc.s.fluid.findVector("surfaceNormal");
+    m->computeShift(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, Scalar(sc.dt())));
+    const auto& zone = *test::fluidOf(sc.s).particles.findScalar("shiftingZone");
+    const auto& normal = *test::fluidOf(sc.s).particles.findVector("surfaceNormal");
     int surfaceParticles = 0, beside = 0;
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-        const Vec3& x = sc.s.fluid.position()[i];
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+        const Vec3& x = test::fluidOf(sc.s).particles.position()[i];
         if (zone[i] == 1) {
             ++surfaceParticles;
             EXPECT_GT(x.y(), surface - 1.5 * dx) << "a particle flagged as surface deep in the fluid";
@@ -263,8 +265,8 @@ TEST(TransportVelocity, WarnsOfAFreeSurface) {
     SurfaceScene sc;
     auto m = sc.model(transportVelocity);
     testing::internal::CaptureStdout();
-    m->computeShift(sc.s, Scalar(sc.dt()));
-    m->computeShift(sc.s, Scalar(sc.dt()));
+    m->computeShift(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, Scalar(sc.dt())));
+    m->computeShift(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, Scalar(sc.dt())));
     std::string out = testing::internal::GetCapturedStdout();
     EXPECT_NE(out.find("--> Warning: shifting transportVelocity:"), std::string::npos) << out;
     EXPECT_NE(out.find("a free surface"), std::string::npos) << out;
@@ -278,7 +280,7 @@ TEST(TransportVelocity, WarnsOfAFreeSurface) {
     for (ShiftScene* scene : {&channel, &box}) {
         auto quiet = scene->model(transportVelocity);
         testing::internal::CaptureStdout();
-        quiet->computeShift(scene->s, Scalar(scene->dt()));
+        quiet->computeShift(scene->s, test::fluidOf(scene->s), test::stepOf(scene->s, Scalar(scene->dt())));
         out = testing::internal::GetCapturedStdout();
         EXPECT_EQ(out.find("Warning"), std::string::npos) << out;
     }
@@ -286,10 +288,10 @@ TEST(TransportVelocity, WarnsOfAFreeSurface) {
 
 TEST(DeltaPlus, ShiftIsCapped) {
     ShiftScene sc(20, 20, true);
-    sc.s.fluid.position()[0] = sc.s.fluid.position()[1] + Vec3(0.05 * dx, 0, 0); // nearly on top of one another
-    sc.s.search.build(sc.s.fluid.position());
+    test::fluidOf(sc.s).particles.position()[0] = test::fluidOf(sc.s).particles.position()[1] + Vec3(0.05 * dx, 0, 0); // nearly on top of one another
+    test::rebuild(sc.s);
     auto m = sc.model("type deltaPlus; maxVelocity 100; maxShift 0.02;");
-    m->computeShift(sc.s, Scalar(sc.dt()));
+    m->computeShift(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, Scalar(sc.dt())));
     double largest = 0;
     for (const auto& dv : sc.shift()) largest = std::max(largest, double(dv.norm()) * sc.dt());
     EXPECT_NEAR(largest, 0.02 * dx, 1e-9 * dx);
@@ -300,19 +302,19 @@ TEST(Laminar, LatticeCorrectionMakesTheLaplacianOfAQuadraticFieldExact) {
     for (double support : {2.6, 4.0}) {
         for (bool corrected : {false, true}) {
             ShiftScene sc(16, 24, false, support);
-            for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-                const double y = sc.s.fluid.position()[i].y();
-                sc.s.fluid.velocity()[i] = Vec3(0.5 * y * y, 0, 0);
-                sc.s.fluid.acceleration()[i].setZero();
+            for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+                const double y = test::fluidOf(sc.s).particles.position()[i].y();
+                test::fluidOf(sc.s).particles.velocity()[i] = Vec3(0.5 * y * y, 0, 0);
+                test::fluidOf(sc.s).particles.acceleration()[i].setZero();
             }
             auto v = test::createModel<ViscosityModel>(
                 std::string("type laminar; nu 1e-3; latticeCorrection ") + (corrected ? "yes;" : "no;"), sc.s.physics);
             v->initialise(sc.s);
-            v->addAcceleration(sc.s, 1e-4);
+            v->addAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-4));
             double worst = 0;
-            for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-                const double y = sc.s.fluid.position()[i].y();
-                if (y > 8 * dx && y < 16 * dx) worst = std::max(worst, std::abs(sc.s.fluid.acceleration()[i].x() / 1e-3 - 1));
+            for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+                const double y = test::fluidOf(sc.s).particles.position()[i].y();
+                if (y > 8 * dx && y < 16 * dx) worst = std::max(worst, std::abs(test::fluidOf(sc.s).particles.acceleration()[i].x() / 1e-3 - 1));
             }
             std::cout << "laminar, support " << support << " dx, latticeCorrection " << corrected
                       << ": largest relative error of nu lap v " << worst << "\n";

@@ -25,20 +25,20 @@ struct TestScene {
         test::fillLattice(s, *kernel, Vec3::Zero(), Vec3(n * dx, n * dx, dim == 3 ? n * dx : 0));
         std::mt19937 rng(seed);
         std::uniform_real_distribution<double> u(-1, 1);
-        for (std::size_t i = 0; i < s.fluid.size(); ++i) {
-            s.fluid.position()[i] += jitter * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
-            s.fluid.velocity()[i] = speed * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
+        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
+            test::fluidOf(s).particles.position()[i] += jitter * dx * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
+            test::fluidOf(s).particles.velocity()[i] = speed * Vec3(u(rng), u(rng), dim == 3 ? u(rng) : 0);
         }
-        s.search.build(s.fluid.position());
+        test::rebuild(s);
     }
     Vec3 totalForce() const {
         Vec3 f = Vec3::Zero();
-        for (const auto& a : s.fluid.acceleration()) f += s.fluid.particleMass() * a;
+        for (const auto& a : test::fluidOf(s).particles.acceleration()) f += test::fluidOf(s).particles.particleMass() * a;
         return f;
     }
     double forceScale() const {
         double m = 0;
-        for (const auto& a : s.fluid.acceleration()) m += s.fluid.particleMass() * a.norm();
+        for (const auto& a : test::fluidOf(s).particles.acceleration()) m += test::fluidOf(s).particles.particleMass() * a.norm();
         return m;
     }
 };
@@ -49,14 +49,14 @@ TEST(Wcsph, SummationDensityIsRestDensityInsideALattice) {
         sc.block(dim == 2 ? 20 : 10, 0, 0);
         auto p = test::createModel<PressureModel>("type wcsph; soundSpeed 20;", sc.s.physics);
         p->initialise(sc.s);
-        p->computeDensity(sc.s);
+        p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
         // the centre particle has a full neighbourhood
         const Vec3 centre = Vec3::Constant(dim == 2 ? 0.1 : 0.05);
         std::size_t best = 0;
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i)
-            if ((sc.s.fluid.position()[i] - centre).norm() < (sc.s.fluid.position()[best] - centre).norm()) best = i;
+        for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i)
+            if ((test::fluidOf(sc.s).particles.position()[i] - centre).norm() < (test::fluidOf(sc.s).particles.position()[best] - centre).norm()) best = i;
         // float: the kernel table and the lattice positions rounded to Scalar
-        EXPECT_NEAR(sc.s.fluid.density()[best] / 1000.0, 1.0, test::tol(1e-9, 1e-5)) << dim << "D: lattice particle mass";
+        EXPECT_NEAR(test::fluidOf(sc.s).particles.density()[best] / 1000.0, 1.0, test::tol(1e-9, 1e-5)) << dim << "D: lattice particle mass";
         EXPECT_EQ(p->soundSpeed(sc.s.constants, sc.s.physics), 20.0);
     }
 }
@@ -66,13 +66,13 @@ TEST(Wcsph, TaitPressureAndSymmetricForceConserveMomentum) {
     sc.block(16, 0.2, 0);
     auto p = test::createModel<PressureModel>("type wcsph; soundSpeed 20; clampNegativePressure no;", sc.s.physics);
     p->initialise(sc.s);
-    p->computeDensity(sc.s);
-    for (auto& a : sc.s.fluid.acceleration()) a.setZero();
-    p->addPressureAcceleration(sc.s, 1e-4);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+    for (auto& a : test::fluidOf(sc.s).particles.acceleration()) a.setZero();
+    p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-4));
     const double B = 20.0 * 20.0 * 1000 / 7;
-    const double rho = sc.s.fluid.density()[5];
+    const double rho = test::fluidOf(sc.s).particles.density()[5];
     // float: (ρ/ρ0)^γ in Scalar, and the round-off of ~30-term pair sums
-    EXPECT_NEAR(sc.s.fluid.pressure()[5], B * (std::pow(rho / 1000, 7) - 1), test::tol(1e-9, 16 * test::eps) * B);
+    EXPECT_NEAR(test::fluidOf(sc.s).particles.pressure()[5], B * (std::pow(rho / 1000, 7) - 1), test::tol(1e-9, 16 * test::eps) * B);
     EXPECT_GT(sc.forceScale(), 0.0);
     EXPECT_LT(sc.totalForce().norm(), test::tol(1e-12, 32 * test::eps) * sc.forceScale());
 }
@@ -85,11 +85,11 @@ TEST(Wcsph, TaitPressureForWholeAndFractionalGamma) {
         auto p = test::createModel<PressureModel>(
             "type wcsph; soundSpeed 20; clampNegativePressure no; gamma " + std::to_string(gamma) + ";", sc.s.physics);
         p->initialise(sc.s);
-        p->computeDensity(sc.s);
+        p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
         const double B = 20.0 * 20.0 * 1000 / gamma;
-        for (std::size_t i : {std::size_t(0), std::size_t(5), sc.s.fluid.size() / 2}) {
-            const double rho = sc.s.fluid.density()[i];
-            EXPECT_NEAR(sc.s.fluid.pressure()[i], B * (std::pow(rho / 1000, gamma) - 1), test::tol(1e-9, 16 * test::eps) * B)
+        for (std::size_t i : {std::size_t(0), std::size_t(5), test::fluidOf(sc.s).particles.size() / 2}) {
+            const double rho = test::fluidOf(sc.s).particles.density()[i];
+            EXPECT_NEAR(test::fluidOf(sc.s).particles.pressure()[i], B * (std::pow(rho / 1000, gamma) - 1), test::tol(1e-9, 16 * test::eps) * B)
                 << "gamma " << gamma; // float: (ρ/ρ0)^γ in Scalar
         }
     }
@@ -100,12 +100,12 @@ TEST(Wcsph, ClampNegativePressure) {
     sc.block(6, 0, 0); // small block: every particle is near the free surface, ρ < ρ0
     auto p = test::createModel<PressureModel>("type wcsph; soundSpeed 10;", sc.s.physics);
     p->initialise(sc.s);
-    p->computeDensity(sc.s);
-    for (double v : sc.s.fluid.pressure()) EXPECT_GE(v, 0.0);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+    for (double v : test::fluidOf(sc.s).particles.pressure()) EXPECT_GE(v, 0.0);
     auto q = test::createModel<PressureModel>("type wcsph; soundSpeed 10; clampNegativePressure no;", sc.s.physics);
     q->initialise(sc.s);
-    q->computeDensity(sc.s);
-    EXPECT_LT(*std::min_element(sc.s.fluid.pressure().begin(), sc.s.fluid.pressure().end()), 0.0);
+    q->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+    EXPECT_LT(*std::min_element(test::fluidOf(sc.s).particles.pressure().begin(), test::fluidOf(sc.s).particles.pressure().end()), 0.0);
 }
 
 TEST(Laminar, RequiresAViscosity) {
@@ -128,15 +128,15 @@ TEST(Akinci, WallVolumesAndDensityNextToTheWall) {
     sc.s.constants.soundSpeed = 20;
     p->initialise(sc.s);
     // without the wall, the first row misses a third of its neighbourhood
-    sc.s.search.build(sc.s.fluid.position());
-    p->computeDensity(sc.s);
+    test::rebuild(sc.s);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
     auto firstRowDensity = [&] {
         double sum = 0;
         int n = 0;
-        for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-            const Vec3& x = sc.s.fluid.position()[i];
+        for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+            const Vec3& x = test::fluidOf(sc.s).particles.position()[i];
             if (x.y() < dx && x.x() > 5 * dx && x.x() < 35 * dx) {
-                sum += sc.s.fluid.density()[i];
+                sum += test::fluidOf(sc.s).particles.density()[i];
                 ++n;
             }
         }
@@ -147,8 +147,8 @@ TEST(Akinci, WallVolumesAndDensityNextToTheWall) {
 
     auto b = test::createModel<BoundaryModel>("type akinci; volume adaptive;", sc.s.physics);
     b->initialise(sc.s);
-    ASSERT_NE(sc.s.walls[0].mass, nullptr);
-    const auto& psi = *sc.s.walls[0].mass;
+    ASSERT_NE(test::wallOf(sc.s, 0).mass, nullptr);
+    const auto& psi = *test::wallOf(sc.s, 0).mass;
     // Ψ_b = ρ0 / Σ_k W_bk over wall particles (self included), checked by brute force
     for (std::size_t k = 0; k < wall.size(); k += 7) {
         double sum = 0;
@@ -158,8 +158,8 @@ TEST(Akinci, WallVolumesAndDensityNextToTheWall) {
     // the layer facing the fluid misses the fluid side of its neighbourhood, so its pseudo-mass
     // is larger than the middle layer's (Akinci's compensation)
     EXPECT_GT(psi[10], 1.2 * psi[10 + 46]);
-    sc.s.search.build(sc.s.fluid.position());
-    p->computeDensity(sc.s);
+    test::rebuild(sc.s);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
     const double walled = firstRowDensity();
     std::cout << "first fluid row density / rho0: without wall " << bare << ", with akinci wall " << walled << "\n";
     EXPECT_NEAR(walled, 1.0, 0.1) << "the wall completes the neighbourhood";
@@ -170,15 +170,15 @@ TEST(Akinci, WallVolumesAndDensityNextToTheWall) {
     // on the fluid lattice completes the neighbourhood exactly: rest density in the first row
     auto lattice = test::createModel<BoundaryModel>("type akinci; volume lattice;", sc.s.physics);
     lattice->initialise(sc.s);
-    for (double m : *sc.s.walls[0].mass) ASSERT_EQ(m, sc.s.fluid.particleMass());
-    p->computeDensity(sc.s);
+    for (double m : *test::wallOf(sc.s, 0).mass) ASSERT_EQ(m, test::fluidOf(sc.s).particles.particleMass());
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
     EXPECT_NEAR(firstRowDensity(), 1.0, test::tol(1e-9, 1e-5));
 
     // `volume auto` takes the lattice volume on this wall, thick enough for a full
     // neighbourhood ...
     auto automatic = test::createModel<BoundaryModel>("type akinci; volume auto;", sc.s.physics);
     automatic->initialise(sc.s);
-    for (double m : *sc.s.walls[0].mass) ASSERT_EQ(m, sc.s.fluid.particleMass());
+    for (double m : *test::wallOf(sc.s, 0).mass) ASSERT_EQ(m, test::fluidOf(sc.s).particles.particleMass());
     // ... and Akinci's adaptive volume on a wall of a single layer
     {
         TestScene thin(2);
@@ -189,19 +189,19 @@ TEST(Akinci, WallVolumesAndDensityNextToTheWall) {
         test::createModel<BoundaryModel>("type akinci; volume auto;", thin.s.physics)->initialise(thin.s);
         double sum = 0;
         for (const auto& w : layer) sum += thin.s.kernel.W((w - layer[20]).norm());
-        EXPECT_NEAR((*thin.s.walls[0].mass)[20], 1000 / sum, test::tol(1e-9, 1e-5) * 1000 / sum);
+        EXPECT_NEAR((*test::wallOf(thin.s, 0).mass)[20], 1000 / sum, test::tol(1e-9, 1e-5) * 1000 / sum);
     }
 
     // a compressed particle next to the wall is pushed away from it
-    for (auto& a : sc.s.fluid.acceleration()) a.setZero();
-    for (auto& x : sc.s.fluid.position()) x.y() -= 0.3 * dx;
-    sc.s.search.build(sc.s.fluid.position());
-    p->computeDensity(sc.s);
-    p->addPressureAcceleration(sc.s, 1e-4);
-    for (std::size_t i = 0; i < sc.s.fluid.size(); ++i) {
-        const Vec3& x = sc.s.fluid.position()[i];
+    for (auto& a : test::fluidOf(sc.s).particles.acceleration()) a.setZero();
+    for (auto& x : test::fluidOf(sc.s).particles.position()) x.y() -= 0.3 * dx;
+    test::rebuild(sc.s);
+    p->computeDensity(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s));
+    p->addPressureAcceleration(sc.s, test::fluidOf(sc.s), test::stepOf(sc.s, 1e-4));
+    for (std::size_t i = 0; i < test::fluidOf(sc.s).particles.size(); ++i) {
+        const Vec3& x = test::fluidOf(sc.s).particles.position()[i];
         if (x.y() < dx && x.x() > 5 * dx && x.x() < 35 * dx) {
-            EXPECT_GT(sc.s.fluid.acceleration()[i].y(), 0.0);
+            EXPECT_GT(test::fluidOf(sc.s).particles.acceleration()[i].y(), 0.0);
         }
     }
 }

@@ -1,12 +1,15 @@
 // What a wall system's .vtp holds: a pressure and a density only when the boundary model gives
 // the walls their own (WallSystem::pressureMirrored false); with a mirroring model (akinci) the
-// arrays are left out, even when writeFields names them, instead of a false 0 for ParaView.
+// arrays are left out, even when writeFields names them, instead of a false 0 for ParaView. Every
+// wall is written at every written time, so that its own pressure follows the flow in ParaView
+// (issue 34, item 2: every time pointed at 0/tank.vtp, the t = 0 pressure).
 #include "Case.hpp"
 #include "Log.hpp"
 #include "Simulation.hpp"
 #include "TestSupport.hpp"
 
 #include <gtest/gtest.h>
+#include <cmath>
 #include <fstream>
 
 #include <vtkDataArray.h>
@@ -64,7 +67,35 @@ TEST(WallOutput, MirroredPressureIsNotWrittenForTheWalls) {
         EXPECT_NE(fluid.get("pressure"), nullptr) << time;
         EXPECT_NE(fluid.get("density"), nullptr) << time;
     }
-    EXPECT_FALSE(fs::exists(dir / "0.002/tank.vtp")) << "a fixed wall is written once";
+    EXPECT_TRUE(fs::exists(dir / "0.002/tank.vtp")) << "every wall at every written time";
+}
+
+// adami walls (the tutorials' default) have a pressure of their own, extrapolated from the fluid:
+// each written time holds the wall's pressure of that time, and the .pvd points each time's wall
+// block at that time's file.
+TEST(WallOutput, AWallsOwnPressureIsWrittenAtEveryTime) {
+    test::TempDir tmp;
+    const fs::path dir = makeCase(tmp.path() / "adami", "{ type adami; }");
+    VtpArrays first(dir / "0/tank.vtp"), last(dir / "0.002/tank.vtp");
+    ASSERT_GT(first.points(), 0);
+    ASSERT_EQ(first.points(), last.points());
+    vtkDataArray* p0 = first.get("pressure");
+    vtkDataArray* p1 = last.get("pressure");
+    ASSERT_NE(p0, nullptr);
+    ASSERT_NE(p1, nullptr);
+    EXPECT_EQ(first.get("acceleration"), nullptr) << "no restart data for walls (sampled anew on a restart)";
+    double largest = 0, changed = 0;
+    for (vtkIdType i = 0; i < first.points(); ++i) {
+        largest = std::max(largest, p1->GetComponent(i, 0));
+        changed = std::max(changed, std::abs(p1->GetComponent(i, 0) - p0->GetComponent(i, 0)));
+    }
+    EXPECT_GT(largest, 100) << "the column's weight on the floor [Pa]";
+    EXPECT_GT(changed, 1) << "the wall pressure of 0.002 is that time's, not t = 0's [Pa]";
+    const std::string pvd = test::readFile(dir / "adami.pvd");
+    for (const char* time : {"0", "0.001", "0.002"})
+        EXPECT_NE(pvd.find(std::string("timestep=\"") + time + "\" group=\"\" part=\"1\" file=\"" + time + "/tank.vtp\""),
+                  std::string::npos)
+            << time << ": " << pvd;
 }
 
 TEST(WallOutput, OwnPressureIsWrittenForTheWalls) {

@@ -160,12 +160,14 @@ void banner(const Simulation& sim, int threads) {
     log::Line() << "Started   : " << startedLine();
     log::Line() << "Case      : " << sim.caseFiles().dir.string();
     log::Line() << "Threads   : " << threads;
-    std::ostringstream walls;
-    for (const auto& w : s.walls)
-        walls << w.name() << " " << w.size() << (w.moving() ? " moving" : "") << ", ";
-    log::Line() << "Particles : " << s.fluid.size() << " fluid, " << s.wallParticles() << " wall ("
-                << walls.str() << s.physics.dimension << "D, spacing " << s.physics.particleSpacing << " m, support "
-                << s.physics.supportRadius << " m)";
+    std::ostringstream systems;
+    for (const auto& p : s.systems)
+        systems << p->name() << " (" << roleName(p->role) << (p->movingBoundary() ? ", moving" : "") << ") "
+                << p->ownedSize() << ", ";
+    log::Line() << "Particles : " << s.particlesOf(SystemRole::fluid) << " fluid, "
+                << s.particlesOf(SystemRole::wall) + s.particlesOf(SystemRole::body) << " boundary (" << systems.str()
+                << s.physics.dimension << "D, spacing " << s.physics.particleSpacing << " m, support "
+                << s.constants.supportRadius << " m)";
     log::Line() << "Schemes   : " << sim.schemesSummary();
     std::string libs;
     for (const auto& l : ModelRegistry::instance().loadedLibraries()) libs += "\n    " + l;

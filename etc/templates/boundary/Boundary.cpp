@@ -1,5 +1,6 @@
-// Template boundary plugin: every wall particle weighs as a fluid particle (walls sampled on the
-// fluid lattice) and mirrors the pressure of the fluid particle it meets.
+// Template boundary plugin: every particle of a boundary (a wall or a body) weighs as a fluid
+// particle (walls sampled on the fluid lattice) and mirrors the pressure of the fluid particle it
+// meets.
 //   sphSchemes:  boundary { type <this folder's name>; }
 #include "BoundaryModel.hpp"
 #include "Plugin.hpp"
@@ -14,11 +15,11 @@ public:
     explicit TemplateBoundary(const ModelContext&) {}
 
     void initialise(Scene& s) override {
-        for (WallSystem& w : s.walls) { // one wall system per constant/geometry walls entry
-            auto& mass = w.particles.addScalar("wallMass");
-            std::fill(mass.begin(), mass.end(), s.fluid.particleMass());
-            w.mass = &mass;
-            w.pressureMirrored = true;
+        for (ParticleSystem* w : s.boundaries()) { // a system per constant/geometry walls or bodies entry
+            auto& mass = w->particles.addScalar("wallMass");
+            std::fill(mass.begin(), mass.end(), s.constants.particleMass);
+            w->mass = &mass;
+            w->pressureMirrored = true;
         }
     }
 };

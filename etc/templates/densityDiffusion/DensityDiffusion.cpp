@@ -27,10 +27,11 @@ public:
     explicit TemplateDensityDiffusion(const ModelContext& c) : delta_(c.dict.getOrDefault<Scalar>("delta", 0.1)) {}
 
     // the continuity equation's rate with the term added, both in one pass over the pairs
-    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
+    void densityRate(const Scene& s, const ParticleSystem& fluid, std::vector<Scalar>& rate) const override {
         const Scalar h = s.constants.supportRadius;
-        const Scalar scale = delta_ * h * s.constants.soundSpeed * s.fluid.particleMass();
-        continuityDensityRate(s, rate, DiffusionTerm{s.fluid.density().data(), Scalar(0.01) * h * h}, scale);
+        const Scalar scale = delta_ * h * s.constants.soundSpeed * fluid.particles.particleMass();
+        continuityDensityRate(s, fluid, rate, DiffusionTerm{fluid.particles.density().data(), Scalar(0.01) * h * h},
+                              scale);
     }
 
 private:

@@ -1,5 +1,5 @@
-// Template function object plugin: the largest fluid speed after every step, written to
-// postProcessing/<name>/<startTime>/<name>.dat.
+// Template function object plugin: the largest speed of the fluid systems after every step,
+// written to postProcessing/<name>/<startTime>/<name>.dat.
 //   controlDict:  functions { speed { type <this folder's name>; } }
 #include "FunctionObject.hpp"
 #include "Plugin.hpp"
@@ -18,9 +18,12 @@ public:
     }
 
     void execute(const Scene& s, bool) override {
-        Scalar maxSpeed = 0;
-        for (const auto& v : s.fluid.velocity()) maxSpeed = std::max(maxSpeed, v.norm());
-        file_.writeRow(s.time, {double(maxSpeed)});
+        double maxSpeed = 0;
+        for (const ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+            const auto& v = fluid->particles.velocity();
+            maxSpeed = std::max(maxSpeed, parallelMax(fluid->ownedSize(), [&](std::size_t i) { return v[i].norm(); }));
+        }
+        file_.writeRow(s.time, {maxSpeed});
     }
 
 private:

@@ -12,7 +12,7 @@ using namespace spindrift;
 class TemplateKernel final : public Kernel {
 public:
     explicit TemplateKernel(const ModelContext& c)
-        : Kernel(c.physics.supportRadius, c.physics.dimension),
+        : Kernel(c.constants.supportRadius, c.physics.dimension),
           sigma_(dim_ == 2 ? 7 / (std::numbers::pi * h_ * h_) : 21 / (2 * std::numbers::pi * h_ * h_ * h_)) {}
 
     Scalar W(Scalar r) const override {

@@ -17,14 +17,21 @@ public:
     // declared at set-up: artificial viscosity and the time-step limit read it (Scene::constants)
     Scalar soundSpeed(const SceneConstants&, const PhysicalParameters&) const override { return c0_; }
 
-    void computeDensity(Scene& s) override {
-        auto& rho = s.fluid.density();
-        auto& p = s.fluid.pressure();
-        summationDensity(s, s.fluid.position(), rho);
-        for (std::size_t i = 0; i < rho.size(); ++i) p[i] = c0_ * c0_ * (rho[i] - rho0_);
+    void computeDensity(Scene& s, ParticleSystem& fluid, const Step&) override {
+        auto& rho = fluid.particles.density();
+        auto& p = fluid.particles.pressure();
+        summationDensity(s, fluid, fluid.particles.position(), rho);
+        forEachIndex(rho.size(), [&](std::size_t i) { p[i] = c0_ * c0_ * (rho[i] - rho0_); });
     }
 
-    void addPressureAcceleration(Scene& s, Scalar) override { addSymmetricPressureAcceleration(s, pOverRho2_); }
+    void addPressureAcceleration(Scene& s, ParticleSystem& fluid, const Step&) override {
+        addSymmetricPressureAcceleration(s, fluid, pOverRho2_);
+    }
+    // the forces on walls and bodies (a forces function object, a floating body): the reactions
+    // of the pressure term's boundary pairs, with the p/ρ² of the last pass
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        addSymmetricPressureReactions(s, fluid, fluid.particles.position(), pOverRho2_.data(), r);
+    }
 
 private:
     Scalar c0_, rho0_;

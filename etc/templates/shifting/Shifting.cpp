@@ -18,19 +18,23 @@ struct ConcentrationGradientTerm {
     Scalar m;
     Particle particle(std::size_t) const { return {}; }
     void fluid(const Particle&, const Pair& q, Sum& sum) const { sum += (m / rho[q.j]) * q.gradW; }
-    void wall(const Particle&, const WallPair& q, Sum& sum) const { sum += (q.mass() / q.wall.rho[q.j]) * q.gradW; }
+    void wall(const Particle&, const WallPair& q, Sum& sum) const { sum += (q.mass() / q.src.rho[q.j]) * q.gradW; }
 };
 
 class TemplateShifting final : public ShiftingModel {
 public:
     explicit TemplateShifting(const ModelContext& c) : coefficient_(c.dict.getOrDefault<Scalar>("coefficient", 0.01)) {}
 
-    void computeShift(Scene& s, Scalar dt) override {
-        auto& shift = s.fluid.addVector("shiftingVelocity"); // the core registered it
-        const Scalar h = s.constants.supportRadius, scale = -coefficient_ * h * h / dt;
-        forEachPairSum(s, s.fluid.position(), ConcentrationGradientTerm{s.fluid.density().data(), s.fluid.particleMass()},
+    void computeShift(Scene& s, ParticleSystem& fluid, const Step& step) override {
+        auto& shift = *fluid.particles.findVector("shiftingVelocity"); // the core registered it
+        const Scalar h = s.constants.supportRadius, scale = -coefficient_ * h * h / step.dt;
+        const ConcentrationGradientTerm term{fluid.particles.density().data(), fluid.particles.particleMass()};
+        forEachPairSum(s, fluid, fluid.particles.position(), term,
                        [&](std::size_t i, const auto&, const Vec3& gradC) { shift[i] = scale * gradC; });
     }
+
+    // it only shifts (adds no acceleration): no force on a wall or body
+    void addReactions(const Scene&, const ParticleSystem&, const Step&, Reactions&) const override {}
 
 private:
     Scalar coefficient_;

@@ -34,10 +34,10 @@ public:
           clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)) {}
 
     void initialise(Scene& s) override {
-        const Scalar m = s.fluid.particleMass(), latticeSum = s.physics.rho0 / m;
+        const Scalar m = s.constants.particleMass, latticeSum = s.constants.rho0 / m;
         const auto& kt = s.kernel;
-        for (std::size_t k = 0; k < s.walls.size(); ++k) {
-            WallSystem& w = s.walls[k];
+        for (ParticleSystem* wall : s.boundaries()) {
+            ParticleSystem& w = *wall;
             auto& mass = w.particles.addScalar("wallMass", {true, false});
             std::fill(mass.begin(), mass.end(), m);
             w.mass = &mass;
@@ -46,7 +46,7 @@ public:
             w.particles.addScalar("density", {true, false});
             w.viscousVelocity = &w.particles.addVector("viscousVelocity", {false, false});
             // the walls must cover the support: some particle has a full wall neighbourhood
-            const NeighbourList list = s.search.wallWallList(k, k);
+            const NeighbourList list = s.search.listBetween(w.index, w.index);
             const auto& x = w.particles.position();
             Scalar fullest = 0;
             for (std::size_t b = 0; b < x.size(); ++b) {
@@ -64,33 +64,35 @@ public:
         }
     }
 
-    void update(Scene& s) override { extrapolate(s, s.fluid.pressure(), true); }
-    void updatePressure(Scene& s, const std::vector<Scalar>& fluidPressure) override {
-        extrapolate(s, fluidPressure, false);
+    // (every boundary from every fluid; with one fluid that is its pressure)
+    void update(Scene& s, const Step&) override {
+        for (const ParticleSystem* fluid : s.ofRole(SystemRole::fluid))
+            extrapolate(s, *fluid, fluid->particles.pressure(), true);
+    }
+    void updatePressure(Scene& s, const ParticleSystem& fluid, const std::vector<Scalar>& fluidPressure) override {
+        extrapolate(s, fluid, fluidPressure, false);
     }
 
 private:
-    // p_w, ρ_w (and v̂_w when 'velocities') of every wall from the fluid pressure p.
-    void extrapolate(Scene& s, const std::vector<Scalar>& p, bool velocities) const {
+    // p_w, ρ_w (and v̂_w when 'velocities') of every boundary from the pressure p of a fluid.
+    void extrapolate(Scene& s, const ParticleSystem& fluid, const std::vector<Scalar>& p, bool velocities) const {
         const auto& kt = s.kernel;
-        const auto& xf = s.fluid.position();
-        const auto& vf = s.fluid.velocity();
-        const auto& rhof = s.fluid.density();
+        const auto& xf = fluid.particles.position();
+        const auto& vf = fluid.particles.velocity();
+        const auto& rhof = fluid.particles.density();
         const Vec3 g = s.physics.gravity;
         const SceneConstants& c = s.constants;
         const bool clamp = clampNegative_, slip = slip_;
-        for (std::size_t k = 0; k < s.walls.size(); ++k) {
-            WallSystem& w = s.walls[k];
-            const NeighbourList& list = s.search.wallFluidNeighbours(k);
+        for (ParticleSystem* wall : s.boundaries()) {
+            ParticleSystem& w = *wall;
+            const NeighbourList& list = s.search.reverseNeighbours(fluid.index, w.index);
             const auto& xw = w.particles.position();
             const auto& vw = w.particles.velocity();
             const auto& aw = w.particles.acceleration();
             auto& pw = w.particles.pressure();
             auto& rhow = w.particles.density();
             auto& vv = *w.particles.findVector("viscousVelocity");
-            const std::size_t n = xw.size();
-#pragma omp parallel for schedule(static)
-            for (std::size_t b = 0; b < n; ++b) {
+            forEachIndex(xw.size(), [&](std::size_t b) {
                 Scalar sumW = 0, sumP = 0;
                 Vec3 sumRhoR = Vec3::Zero(), sumV = Vec3::Zero();
                 forEachNeighbour(list, xw, xf, b, [&](Index f, const Vec3& r, Scalar r2) {
@@ -104,7 +106,7 @@ private:
                     pw[b] = 0;
                     rhow[b] = c.rho0;
                     if (velocities) vv[b] = vw[b];
-                    continue;
+                    return;
                 }
                 Scalar pb = (sumP + (g - aw[b]).dot(sumRhoR)) / sumW;
                 if (clamp) pb = std::max(pb, Scalar(0));
@@ -114,7 +116,7 @@ private:
                     const Vec3 fluidVelocity = sumV / sumW;
                     vv[b] = slip ? fluidVelocity : Vec3(2 * vw[b] - fluidVelocity);
                 }
-            }
+            });
         }
     }
 

@@ -38,19 +38,20 @@ public:
 
     void initialise(Scene& s) override {
         const auto& kt = s.kernel;
-        const Scalar rho0 = s.physics.rho0, m = s.fluid.particleMass();
+        const Scalar rho0 = s.constants.rho0, m = s.constants.particleMass;
         const Scalar latticeSum = rho0 / m; // Σ W over a full lattice neighbourhood (latticeParticleMass)
-        for (std::size_t k = 0; k < s.walls.size(); ++k) {
-            WallSystem& w = s.walls[k];
-            // Σ_k W_bk over the particles of every wall
+        const auto boundaries = s.boundaries();
+        for (ParticleSystem* wall : boundaries) {
+            ParticleSystem& w = *wall;
+            // Σ_k W_bk over the particles of every boundary
             std::vector<Scalar> sum(w.size(), kt.W0());
             const auto& x = w.particles.position();
-            for (std::size_t l = 0; l < s.walls.size(); ++l) {
-                const NeighbourList list = s.search.wallWallList(k, l);
-                const auto& xl = s.walls[l].particles.position();
-#pragma omp parallel for schedule(static)
-                for (std::size_t b = 0; b < x.size(); ++b)
+            for (const ParticleSystem* other : boundaries) {
+                const NeighbourList list = s.search.listBetween(w.index, other->index);
+                const auto& xl = other->particles.position();
+                forEachIndex(x.size(), [&](std::size_t b) {
                     forEachNeighbour(list, x, xl, b, [&](Index, const Vec3&, Scalar r2) { sum[b] += kt.WSq(r2); });
+                });
             }
             const Scalar fullest = w.size() ? *std::max_element(sum.begin(), sum.end()) : Scalar(0);
             const bool lattice = volume_ == "lattice" || (volume_ == "auto" && fullest >= Scalar(0.95) * latticeSum);

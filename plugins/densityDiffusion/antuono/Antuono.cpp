@@ -62,18 +62,16 @@ public:
         if (!(delta_ >= 0)) throw InputError(c.dict.locationOf("delta"), "delta must not be negative", "delta");
     }
 
-    void initialise(Scene& s) override {
-        gradient_ = &s.fluid.addVector("densityGradient", {false, false, true});
-        dimension_ = s.physics.dimension;
-    }
+    void initialise(Scene& s) override { dimension_ = s.physics.dimension; }
 
-    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
-        const Scalar m = s.fluid.particleMass(), h = s.constants.supportRadius;
-        const auto& x = s.fluid.position();
-        const Scalar* rho = s.fluid.density().data();
-        auto& gradient = *gradient_;
+    void densityRate(const Scene& s, const ParticleSystem& fluid, std::vector<Scalar>& rate) const override {
+        const Scalar m = fluid.particles.particleMass(), h = s.constants.supportRadius;
+        const auto& x = fluid.particles.position();
+        const Scalar* rho = fluid.particles.density().data();
+        auto& gradient = gradient_;
+        gradient.resize(x.size());
         const int d = dimension_;
-        forEachPairSum(s, x, DensityGradientTerm{rho, m}, [&](std::size_t i, Scalar, const auto& sum) {
+        forEachPairSum(s, fluid, x, DensityGradientTerm{rho, m}, [&](std::size_t i, Scalar, const auto& sum) {
             // renormalise in the problem's dimensions; leave the gradient as it is where the
             // moment matrix cannot be inverted (too few neighbours)
             Vec3 g = sum.gradient;
@@ -87,12 +85,12 @@ public:
             gradient[i] = g;
         });
         const Scalar scale = delta_ * h * s.constants.soundSpeed * m;
-        continuityDensityRate(s, rate, AntuonoTerm{rho, inverseDensity(s), gradient.data()}, scale);
+        continuityDensityRate(s, fluid, rate, AntuonoTerm{rho, inverseDensity(fluid), gradient.data()}, scale);
     }
 
 private:
     Scalar delta_;
-    std::vector<Vec3>* gradient_ = nullptr;
+    mutable std::vector<Vec3> gradient_; // the renormalised density gradient (scratch of a call)
     int dimension_ = 2;
 };
 } // namespace

@@ -42,13 +42,13 @@ public:
                                      "pressure model (wcsph, isobaric)");
     }
 
-    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
+    void densityRate(const Scene& s, const ParticleSystem& fluid, std::vector<Scalar>& rate) const override {
         const SceneConstants& c = s.constants;
         const Scalar h = c.supportRadius;
-        const Scalar scale = delta_ * h * c.soundSpeed * s.fluid.particleMass();
-        const FourtakasTerm term{s.fluid.density().data(), inverseDensity(s),
-                                 Vec3(-c.rho0 * s.physics.gravity / (c.soundSpeed * c.soundSpeed))};
-        continuityDensityRate(s, rate, term, scale);
+        const Scalar scale = delta_ * h * c.soundSpeed * fluid.particles.particleMass();
+        const FourtakasTerm term{fluid.particles.density().data(), inverseDensity(fluid),
+                                 Vec3(-fluid.rho0 * s.physics.gravity / (c.soundSpeed * c.soundSpeed))};
+        continuityDensityRate(s, fluid, rate, term, scale);
     }
 
 private:

@@ -32,10 +32,10 @@ public:
         if (!(delta_ >= 0)) throw InputError(c.dict.locationOf("delta"), "delta must not be negative", "delta");
     }
 
-    void densityRate(const Scene& s, std::vector<Scalar>& rate) const override {
+    void densityRate(const Scene& s, const ParticleSystem& fluid, std::vector<Scalar>& rate) const override {
         const Scalar h = s.constants.supportRadius;
-        const Scalar scale = delta_ * h * s.constants.soundSpeed * s.fluid.particleMass();
-        continuityDensityRate(s, rate, MolteniTerm{s.fluid.density().data(), inverseDensity(s)}, scale);
+        const Scalar scale = delta_ * h * s.constants.soundSpeed * fluid.particles.particleMass();
+        continuityDensityRate(s, fluid, rate, MolteniTerm{fluid.particles.density().data(), inverseDensity(fluid)}, scale);
     }
 
 private:

@@ -53,18 +53,20 @@ public:
             throw InputError(c.dict.locationOf("epsilon"), "epsilon must not be negative", "epsilon");
     }
 
-    void initialise(Scene& s) override { omega_ = &s.fluid.addVector("vorticity", {true, false}); }
+    void initialise(Scene& s) override {
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) fluid->particles.addVector("vorticity", {true, false});
+    }
 
-    void addAcceleration(Scene& s, Scalar) override {
-        const Scalar m = s.fluid.particleMass(), h = s.constants.supportRadius, eps = epsilon_;
-        const auto& x = s.fluid.position();
-        const Scalar* rho = s.fluid.density().data();
-        auto& w = *omega_;
-        forEachPairSum(s, x, CurlTerm{s.fluid.velocity().data(), rho, m},
+    void addAcceleration(Scene& s, ParticleSystem& fluid, const Step&) override {
+        const Scalar m = fluid.particles.particleMass(), h = s.constants.supportRadius, eps = epsilon_;
+        const auto& x = fluid.particles.position();
+        const Scalar* rho = fluid.particles.density().data();
+        auto& w = *fluid.particles.findVector("vorticity");
+        forEachPairSum(s, fluid, x, CurlTerm{fluid.particles.velocity().data(), rho, m},
                        [&](std::size_t i, const auto&, const Vec3& curl) { w[i] = curl; });
         if (epsilon_ == 0) return;
-        auto& a = s.fluid.acceleration();
-        forEachPairSum(s, x, VorticityGradientTerm{w.data(), rho, m}, [&](std::size_t i, Scalar wi, const Vec3& eta) {
+        auto& a = fluid.particles.acceleration();
+        forEachPairSum(s, fluid, x, VorticityGradientTerm{w.data(), rho, m}, [&](std::size_t i, Scalar wi, const Vec3& eta) {
             // N = η/|η| is undefined where |ω| is uniform: a gradient below 1e-6 |ω_i|/h is
             // round-off, not a direction
             const Scalar len = eta.norm();
@@ -72,9 +74,11 @@ public:
         });
     }
 
+    // its terms have no boundary part: no force on a wall or body
+    void addReactions(const Scene&, const ParticleSystem&, const Step&, Reactions&) const override {}
+
 private:
     Scalar epsilon_ = 0;
-    std::vector<Vec3>* omega_ = nullptr;
 };
 } // namespace
 

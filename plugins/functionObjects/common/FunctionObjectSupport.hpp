@@ -1,17 +1,19 @@
 // Spindrift — helpers shared by the function-object plugins (plugins/functionObjects):
 //
 //  * SamplingFunctionObject: the base of an object that writes a row of samples at the times
-//    its SampleControl gives, to postProcessing/<name>/<startTime>/.
+//    its SampleControl gives, to postProcessing/<name>/<startTime>/, of one particle system:
+//        system fluid;            // the system sampled (default: the fluid, when there is one)
 //  * SampleControl: when an object samples, from its dictionary
 //        writeControl  timeStep | runTime | writeTime;   // default timeStep
 //        writeInterval 10;        // steps (timeStep, default 1) or seconds (runTime, required)
 //    runTime samples at the first step ending at or after each multiple of writeInterval
 //    (counted from the start time); writeTime samples when the solver writes a time directory.
-//  * SampleGrid: a uniform grid of the fluid particles built at sample time (cell = support
-//    radius h), so interpolation at arbitrary points sees the current positions even after an
-//    integrator moved the particles past the step's neighbour search, and works in start()
-//    before the first force evaluation. Periodic axes use the minimum image.
-//  * shepard(): Shepard-normalised SPH interpolation at a point,
+//  * forEachSampledWithin(): the particles of the sampled system within the support radius of a
+//    point, at their current positions (the neighbour search's point query, which builds its
+//    grid again whenever the particles have moved: after an integrator moved them past the
+//    step's search, and in start() before the first force evaluation). Periodic axes use the
+//    minimum image.
+//  * shepardSum(): Shepard-normalised SPH interpolation at a point,
 //        f(x) = Σ_j f_j V_j W(x − x_j) / Σ_j V_j W(x − x_j),   V_j = m/ρ_j.
 //  * columnLabel(): "p(0.1,0.05,0)"-style column names carrying the sample location.
 #pragma once
@@ -94,77 +96,73 @@ public:
 
 protected:
     explicit SamplingFunctionObject(const ModelContext& c)
-        : name_(c.name), dim_(c.physics.dimension), caseDir_(c.caseDirectory), control_(c.dict) {}
-    void open(double startTime, const std::vector<std::string>& columns) {
+        : name_(c.name), dim_(c.physics.dimension), caseDir_(c.caseDirectory), control_(c.dict),
+          systemName_(c.dict.getOrDefault<std::string>("system", "")),
+          systemWhere_(c.dict.found("system") ? c.dict.locationOf("system") : c.dict.where()) {}
+    // Opens the output (call it from start(); it selects the sampled system if not yet done).
+    void open(const Scene& s, double startTime, const std::vector<std::string>& columns) {
+        select(s);
         file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
         control_.start(startTime);
     }
+    // Resolves the sampled system: `system <name>;`, or the one fluid system.
+    const ParticleSystem& select(const Scene& s) {
+        system_ = &resolveSystem(s);
+        return *system_;
+    }
     // One row at the scene's time; listsValid: the neighbour lists are the step's (false at start()).
     virtual void sample(const Scene& s, bool listsValid) = 0;
+    // The system sampled (resolved by open()).
+    const ParticleSystem& sampled() const { return *system_; }
+
+    // f(j, r) for every particle j of the sampled system within the support radius of p, at the
+    // particles' current positions.
+    template <class F> void forEachSampledWithin(const Scene& s, const Vec3& p, F&& f) const {
+        s.search.forEachWithin(system_->index, p, s.constants.supportRadius, s.stateVersion, std::forward<F>(f));
+    }
+    // Kernel sum Σ_j V_j W(x − x_j) at a point over the sampled system (≈ 1 inside the fluid, ≈ ½
+    // at a free surface); 'accumulate(j, weight)' is called for every neighbour with weight V_j W.
+    template <class F> Scalar shepardSum(const Scene& s, const Vec3& p, F&& accumulate) const {
+        const auto& rho = system_->particles.density();
+        const Scalar m = system_->particles.particleMass();
+        Scalar sum = 0;
+        forEachSampledWithin(s, p, [&](Index j, Scalar r) {
+            const Scalar w = m / rho[j] * s.kernel.W(r);
+            sum += w;
+            accumulate(j, w);
+        });
+        return sum;
+    }
 
     std::string name_;
     int dim_;
     PostProcessingFile file_;
 
 private:
+    // `system <name>;`, or the one fluid system; an InputError names the entry otherwise.
+    const ParticleSystem& resolveSystem(const Scene& s) const {
+        if (!systemName_.empty()) {
+            if (const ParticleSystem* p = s.find(systemName_)) return *p;
+            std::string names;
+            for (const auto& p : s.systems) names += (names.empty() ? "" : " ") + p->name();
+            throw InputError(systemWhere_, "function object '" + name_ + "': no particle system '" + systemName_ +
+                                               "'; systems: (" + names + ")", "system");
+        }
+        const auto fluids = s.ofRole(SystemRole::fluid);
+        if (fluids.size() != 1)
+            throw InputError(systemWhere_, "function object '" + name_ + "': the case has " +
+                                               std::to_string(fluids.size()) +
+                                               " fluid systems; name the one to sample with 'system <name>;'",
+                             "system");
+        return *fluids.front();
+    }
+
     std::filesystem::path caseDir_;
     SampleControl control_;
+    std::string systemName_;
+    SourceLocation systemWhere_;
+    const ParticleSystem* system_ = nullptr;
 };
-
-// The fluid particles bucketed on a grid of cell size h over their current bounding box.
-class SampleGrid {
-public:
-    void build(const Scene& s) {
-        const auto& x = s.fluid.position();
-        const int dim = s.physics.dimension;
-        const Scalar h = s.physics.supportRadius;
-        Vec3 lo = Vec3::Constant(std::numeric_limits<Scalar>::max()), hi = -lo;
-        for (const auto& p : x) {
-            lo = lo.cwiseMin(p);
-            hi = hi.cwiseMax(p);
-        }
-        if (x.empty()) lo = hi = Vec3::Zero();
-        lo -= Vec3::Constant(h);
-        hi += Vec3::Constant(h);
-        const Periodicity& periodic = s.search.periodicity();
-        for (int a = 0; a < 3; ++a)
-            if (periodic.axis[a]) {
-                lo[a] = periodic.min[a];
-                hi[a] = periodic.min[a] + periodic.length[a];
-            }
-        if (dim == 2) lo[2] = hi[2] = 0;
-        grid_.setup(h, dim, lo, hi, periodic);
-        grid_.build(x);
-        periodic_ = periodic;
-    }
-
-    template <class F> void forEachWithin(const Scene& s, const Vec3& p, F&& f) const {
-        const auto& x = s.fluid.position();
-        grid_.forEachWithin(p, x, s.physics.supportRadius, [&](Index j) {
-            Vec3 d = p - x[j];
-            periodic_.minimumImage(d);
-            f(j, d.norm());
-        });
-    }
-
-private:
-    UniformGrid grid_;
-    Periodicity periodic_;
-};
-
-// Kernel sum Σ_j V_j W(x − x_j) at a point (≈ 1 inside the fluid, ≈ ½ at a free surface);
-// 'accumulate(j, weight)' is called for every neighbour with weight V_j W.
-template <class F> Scalar shepardSum(const Scene& s, const SampleGrid& grid, const Vec3& p, F&& accumulate) {
-    const auto& rho = s.fluid.density();
-    const Scalar m = s.fluid.particleMass();
-    Scalar sum = 0;
-    grid.forEachWithin(s, p, [&](Index j, Scalar r) {
-        const Scalar w = m / rho[j] * s.kernel.W(r);
-        sum += w;
-        accumulate(j, w);
-    });
-    return sum;
-}
 
 // "name(x,y,z)" with the third coordinate left out in 2D.
 inline std::string columnLabel(const std::string& name, const Vec3& p, int dimension) {

@@ -34,17 +34,18 @@ public:
             columns.push_back(std::string(1, "xyz"[a]) + "Min");
             columns.push_back(std::string(1, "xyz"[a]) + "Max");
         }
-        open(startTime, columns);
+        open(s, startTime, columns);
         sample(s, false);
     }
 
 private:
     void sample(const Scene& s, bool listsValid) override {
-        const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
-        const auto& rho = s.fluid.density();
-        const std::size_t n = x.size();
-        const double rho0 = s.physics.rho0, m = s.fluid.particleMass();
+        const ParticleSystem& fluid = sampled();
+        const auto& x = fluid.particles.position();
+        const auto& v = fluid.particles.velocity();
+        const auto& rho = fluid.particles.density();
+        const std::size_t n = fluid.ownedSize();
+        const double rho0 = fluid.rho0 > 0 ? double(fluid.rho0) : s.constants.rho0, m = fluid.particles.particleMass();
         std::vector<double> row{double(n)};
         if (n == 0) {
             row.resize(5 + dim_ + 2 + 2 * dim_, notANumber);
@@ -52,13 +53,8 @@ private:
             file_.writeRow(s.time, row);
             return;
         }
-        double errMin = (rho[0] - rho0) / rho0, errMax = errMin;
-#pragma omp parallel for schedule(static) reduction(min : errMin) reduction(max : errMax)
-        for (std::size_t i = 1; i < n; ++i) {
-            const double e = (rho[i] - rho0) / rho0;
-            errMax = std::max(errMax, e);
-            errMin = std::min(errMin, e);
-        }
+        const double errMin = parallelMin(n, [&](std::size_t i) { return (rho[i] - rho0) / rho0; });
+        const double errMax = -parallelMin(n, [&](std::size_t i) { return -(rho[i] - rho0) / rho0; });
         const double errAvg = deterministicSum(n, [&](std::size_t i) { return (rho[i] - rho0) / rho0; }) / double(n);
         const double ke = 0.5 * m * deterministicSum(n, [&](std::size_t i) { return double(v[i].squaredNorm()); });
         row.insert(row.end(), {errMin, errMax, errAvg, ke});
@@ -67,9 +63,9 @@ private:
         row.push_back(std::sqrt(parallelMax(n, [&](std::size_t i) { return double(v[i].squaredNorm()); })));
         row.push_back(minPairDistance(s, listsValid));
         Vec3 lo = x[0], hi = x[0];
-        for (const auto& p : x) {
-            lo = lo.cwiseMin(p);
-            hi = hi.cwiseMax(p);
+        for (std::size_t i = 0; i < n; ++i) {
+            lo = lo.cwiseMin(x[i]);
+            hi = hi.cwiseMax(x[i]);
         }
         for (int a = 0; a < dim_; ++a) {
             row.push_back(lo[a]);
@@ -78,28 +74,29 @@ private:
         file_.writeRow(s.time, row);
     }
 
-    // Over the step's fluid neighbour list when it matches the particles (after a step),
-    // otherwise over a grid built here (start time).
-    double minPairDistance(const Scene& s, bool listsValid) {
-        const auto& x = s.fluid.position();
-        const std::size_t n = x.size();
-        const auto& list = s.search.fluidNeighbours();
+    // Over the step's own neighbour list of the system when it matches the particles (after a
+    // step), otherwise over the search's point query at the current positions (start time).
+    double minPairDistance(const Scene& s, bool listsValid) const {
+        const ParticleSystem& fluid = sampled();
+        const auto& x = fluid.particles.position();
+        const std::size_t n = fluid.ownedSize();
+        const QueryLists& q = s.listsOf(fluid);
         double r2min = std::numeric_limits<double>::infinity();
-        if (listsValid && list.size() == n) {
-#pragma omp parallel for schedule(static) reduction(min : r2min)
-            for (std::size_t i = 0; i < n; ++i)
-                forEachNeighbour(list, x, x, i, [&](Index, const Vec3&, Scalar r2) { r2min = std::min(r2min, double(r2)); });
+        if (listsValid && q.hasOwn() && q.size() == n) {
+            const NeighbourList& list = q.own();
+            r2min = parallelMin(n, [&](std::size_t i) {
+                double m = std::numeric_limits<double>::infinity();
+                forEachNeighbour(list, x, x, i, [&](Index, const Vec3&, Scalar r2) { m = std::min(m, double(r2)); });
+                return m;
+            });
         } else {
-            grid_.build(s);
             for (std::size_t i = 0; i < n; ++i)
-                grid_.forEachWithin(s, x[i], [&](Index j, Scalar r) {
+                forEachSampledWithin(s, x[i], [&](Index j, Scalar r) {
                     if (j != i) r2min = std::min(r2min, double(r) * double(r));
                 });
         }
         return std::isfinite(r2min) ? std::sqrt(r2min) : notANumber;
     }
-
-    SampleGrid grid_;
 };
 } // namespace
 

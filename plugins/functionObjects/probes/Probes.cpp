@@ -47,22 +47,23 @@ public:
 
     void start(const Scene& s, double startTime) override {
         fields_.clear();
+        const ParticleSet& set = select(s).particles;
         std::vector<std::string> columns;
         for (const auto& f : fieldNames_) {
             Field field;
             field.name = f;
-            if (f == "pressure" || f == "density" || s.fluid.findScalar(f)) {
+            if (f == "pressure" || f == "density" || set.findScalar(f)) {
                 field.vector = false;
                 field.label = f == "pressure" ? "p" : f == "density" ? "rho" : f;
-            } else if (f == "velocity" || s.fluid.findVector(f)) {
+            } else if (f == "velocity" || set.findVector(f)) {
                 field.vector = true;
                 field.label = f == "velocity" ? "U" : f + "_";
             } else {
                 std::string known = "pressure velocity density";
-                for (const auto& sf : s.fluid.scalarFields()) known += " " + sf->name;
-                for (const auto& vf : s.fluid.vectorFields()) known += " " + vf->name;
-                throw InputError(fieldsWhere_, "probes '" + name_ + "': unknown fluid field '" + f +
-                                                   "'; fields of this case: (" + known + ")", "fields");
+                for (const auto& sf : set.scalarFields()) known += " " + sf->name;
+                for (const auto& vf : set.vectorFields()) known += " " + vf->name;
+                throw InputError(fieldsWhere_, "probes '" + name_ + "': unknown field '" + f + "' of " + set.name() +
+                                                   "; its fields: (" + known + ")", "fields");
             }
             fields_.push_back(field);
         }
@@ -72,13 +73,13 @@ public:
                 else
                     for (int a = 0; a < dim_; ++a) columns.push_back(columnLabel(f.label + "xyz"[a], p, dim_));
             }
-        open(startTime, columns);
+        open(s, startTime, columns);
         warnOfLocationsOutside(s);
     }
 
 private:
     void sample(const Scene& s, bool) override {
-        grid_.build(s);
+        const ParticleSet& set = sampled().particles;
         std::vector<double> row;
         const std::size_t nProbes = locations_.size();
         std::vector<std::vector<double>> values(fields_.size());
@@ -89,13 +90,13 @@ private:
             std::vector<const std::vector<Vec3>*> vectors(fields_.size(), nullptr);
             for (std::size_t f = 0; f < fields_.size(); ++f) {
                 const auto& name = fields_[f].name;
-                if (fields_[f].vector) vectors[f] = name == "velocity" ? &s.fluid.velocity() : s.fluid.findVector(name);
+                if (fields_[f].vector) vectors[f] = name == "velocity" ? &set.velocity() : set.findVector(name);
                 else
-                    scalars[f] = name == "pressure"  ? &s.fluid.pressure()
-                                 : name == "density" ? &s.fluid.density()
-                                                     : s.fluid.findScalar(name);
+                    scalars[f] = name == "pressure"  ? &set.pressure()
+                                 : name == "density" ? &set.density()
+                                                     : set.findScalar(name);
             }
-            const Scalar sum = shepardSum(s, grid_, locations_[k], [&](Index j, Scalar w) {
+            const Scalar sum = shepardSum(s, locations_[k], [&](Index j, Scalar w) {
                 for (std::size_t f = 0; f < fields_.size(); ++f) {
                     if (vectors[f]) sums[f] += w * (*vectors[f])[j];
                     else sums[f][0] += w * (*scalars[f])[j];
@@ -118,10 +119,9 @@ private:
                 hi = hi.cwiseMax(p);
             }
         };
-        extend(s.fluid.position());
-        for (const auto& w : s.walls) extend(w.particles.position());
+        for (const auto& p : s.systems) extend(p->particles.position());
         if (!(lo[0] <= hi[0])) return; // no particle at all (refused before a run)
-        const Scalar h = s.physics.supportRadius;
+        const Scalar h = s.constants.supportRadius;
         const auto point = [&](const Vec3& p) {
             std::ostringstream o;
             o << "(" << p[0] << " " << p[1];
@@ -148,7 +148,6 @@ private:
     SourceLocation fieldsWhere_, locationsWhere_;
     std::vector<Vec3> locations_;
     std::vector<Field> fields_;
-    SampleGrid grid_;
 };
 } // namespace
 

@@ -49,22 +49,23 @@ public:
     void start(const Scene& s, double startTime) override {
         const std::vector<std::string> columns =
             dim_ == 3 ? std::vector<std::string>{"front", "x", "y", "z"} : std::vector<std::string>{"front", "x", "y"};
-        open(startTime, columns);
+        open(s, startTime, columns);
         sample(s, false);
     }
 
 private:
     void sample(const Scene& s, bool listsValid) override {
-        const auto& x = s.fluid.position();
-        const auto& list = s.search.fluidNeighbours();
+        const ParticleSystem& fluid = sampled();
+        const auto& x = fluid.particles.position();
+        const QueryLists& q = s.listsOf(fluid);
         // neighbour counts are those of the step's last search (same particle order)
-        const bool countNeighbours = minNeighbours_ > 0 && listsValid && list.size() == x.size();
+        const bool countNeighbours = minNeighbours_ > 0 && listsValid && q.hasOwn() && q.size() == fluid.ownedSize();
         double best = -std::numeric_limits<double>::infinity();
         long bestIndex = -1;
-        for (std::size_t i = 0; i < x.size(); ++i) {
+        for (std::size_t i = 0; i < fluid.ownedSize(); ++i) {
             const Vec3 r = x[i] - origin_;
             if (useHeight_ && r.dot(up_) > maxHeight_) continue;
-            if (countNeighbours && int(list.count(i)) < minNeighbours_) continue;
+            if (countNeighbours && int(q.own().count(i)) < minNeighbours_) continue;
             const double d = r.dot(direction_);
             if (d > best) {
                 best = d;

@@ -44,25 +44,24 @@ public:
     void start(const Scene& s, double startTime) override {
         std::vector<std::string> columns;
         for (const auto& p : gauges_) columns.push_back(columnLabel("level", p, dim_));
-        open(startTime, columns);
+        open(s, startTime, columns);
         sample(s, false);
     }
 
 private:
     Scalar phi(const Scene& s, const Vec3& p) const {
         Scalar sum = 0;
-        grid_.forEachWithin(s, p, [&](Index, Scalar r) { sum += s.kernel.W(r); });
-        return sum * s.fluid.particleMass() / rho0_;
+        forEachSampledWithin(s, p, [&](Index, Scalar r) { sum += s.kernel.W(r); });
+        return sum * sampled().particles.particleMass() / rho0_;
     }
 
     void sample(const Scene& s, bool) override {
-        grid_.build(s);
-        const auto& x = s.fluid.position();
+        const auto& x = sampled().particles.position();
         std::vector<double> row;
         for (const auto& base : gauges_) {
             Scalar top = 0;
             for (const auto& xi : x) top = std::max(top, (xi - base).dot(up_));
-            top += s.physics.supportRadius;
+            top += s.constants.supportRadius;
             const Scalar step = Scalar(0.5) * dx_;
             Scalar above = top, level = -1;
             for (Scalar z = top; z >= 0; z -= step) {
@@ -86,7 +85,6 @@ private:
     Scalar rho0_, dx_, threshold_ = 0.5;
     Vec3 up_;
     std::vector<Vec3> gauges_;
-    SampleGrid grid_;
 };
 } // namespace
 

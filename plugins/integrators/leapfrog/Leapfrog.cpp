@@ -14,8 +14,8 @@ public:
     explicit Leapfrog(const ModelContext&) {}
     int order() const override { return 2; }
 
-    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
-        kickDriftKick(s, dt, evaluate, EvaluationVelocity::halfStep);
+    void step(Scene& s, const StepServices& core, Scalar dt, const Evaluate& evaluate) override {
+        kickDriftKick(s, core, dt, evaluate, EvaluationVelocity::halfStep);
     }
 };
 } // namespace

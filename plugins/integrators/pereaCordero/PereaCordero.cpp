@@ -56,48 +56,57 @@ public:
 
     void initialise(Scene& s) override {
         // allocated only when this integrator is chosen; needed for an exact restart
-        s.fluid.addVector("accelerationOld1", {false, true});
-        s.fluid.addVector("accelerationOld2", {false, true});
-        s.fluid.addScalar("historyLength", {false, true});
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+            fluid->particles.addVector("accelerationOld1", {false, true});
+            fluid->particles.addVector("accelerationOld2", {false, true});
+            fluid->particles.addScalar("historyLength", {false, true});
+            fluid->particles.addVector("pereaCorderoMidVelocity", {false, false, true});
+        }
     }
 
-    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
-        startStep(s, evaluate);
-        auto& x = s.fluid.position();
-        auto& v = s.fluid.velocity();
-        const auto& a = s.fluid.acceleration();
-        auto& a1 = *s.fluid.findVector("accelerationOld1");
-        auto& a2 = *s.fluid.findVector("accelerationOld2");
-        auto& level = *s.fluid.findScalar("historyLength");
+    void step(Scene& s, const StepServices& core, Scalar dt, const Evaluate& evaluate) override {
+        startStep(s, dt, evaluate);
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) advance(s, core, *fluid, dt);
+        evaluateAtEnd(s, dt, evaluate);
+    }
+
+private:
+    void advance(Scene& s, const StepServices& core, ParticleSystem& fluid, Scalar dt) const {
+        auto& x = fluid.particles.position();
+        auto& v = fluid.particles.velocity();
+        const auto& a = fluid.particles.acceleration();
+        auto& a1 = *fluid.particles.findVector("accelerationOld1");
+        auto& a2 = *fluid.particles.findVector("accelerationOld2");
+        auto& level = *fluid.particles.findScalar("historyLength");
         const Scalar c0 = c_[0], c1 = c_[1], c2 = c_[2];
         const Scalar kx = beta2_ * dt * dt / 6, kv = beta1_ * dt / 2, half = Scalar(0.5) * dt * dt;
-        // an integrated field (continuity density) with the mid-step velocities at x_n
-        if (!s.integratedFields.empty()) {
-            mid_.resize(x.size());
-            forEachFluidParticle(s, [&](std::size_t i) {
-                mid_[i] = v[i];
+        // an integrated density (continuity) with the mid-step velocities at x_n
+        if (core.integratesDensity(fluid)) {
+            auto& mid = *fluid.particles.findVector("pereaCorderoMidVelocity"); // v_n meanwhile
+            forEachParticleOf(fluid, [&](std::size_t i) {
+                mid[i] = v[i];
                 v[i] += Scalar(0.5) * dt * a[i];
             });
-            advanceIntegratedFields(s, dt);
-            forEachFluidParticle(s, [&](std::size_t i) { v[i] = mid_[i]; });
+            core.advanceDensity(s, fluid, dt);
+            forEachParticleOf(fluid, [&](std::size_t i) { v[i] = mid[i]; });
         }
-        forEachFluidParticle(s, [&](std::size_t i) {
+        // x_{n+1} = x_n + Δt (v_n + δv) (the core's drift), then the Taylor terms
+        core.drift(s, fluid, dt, v, x);
+        forEachParticleOf(fluid, [&](std::size_t i) {
             const bool full = level[i] >= 2;
             const Vec3 am1 = full ? a1[i] : a[i], am2 = full ? a2[i] : a[i];
             const Vec3 d = c0 * a[i] + c1 * am1 + c2 * am2;
-            x[i] += dt * advectionVelocity(s, v, i) + half * a[i] + kx * d;
+            x[i] += half * a[i] + kx * d;
             v[i] += dt * a[i] + kv * d;
             a2[i] = level[i] >= 1 ? a1[i] : a[i];
             a1[i] = a[i];
             level[i] = std::min<Scalar>(level[i] + 1, 2);
         });
-        evaluateAtEnd(s, dt, evaluate);
+        core.wrap(s, fluid, x);
     }
 
-private:
     Scalar beta1_, beta2_;
     Scalar c_[3];
-    std::vector<Vec3> mid_; // v_n while the velocities are the mid-step ones
 };
 } // namespace
 

@@ -16,14 +16,15 @@ public:
     // the scheme position-based (Δx/Δt²) and velocity-based (Δv/Δt) results are formulated with
     bool applies(ResultKind) const override { return true; }
 
-    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
-        evaluate(s.time);
-        auto& x = s.fluid.position();
-        auto& v = s.fluid.velocity();
-        const auto& a = s.fluid.acceleration();
-        forEachFluidParticle(s, [&](std::size_t i) { v[i] += dt * a[i]; });
-        advanceIntegratedFields(s, dt); // with v_{n+1}, at x_n
-        forEachFluidParticle(s, [&](std::size_t i) { x[i] += dt * advectionVelocity(s, v, i); });
+    void step(Scene& s, const StepServices& core, Scalar dt, const Evaluate& evaluate) override {
+        evaluate(s.time, dt);
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+            auto& v = fluid->particles.velocity();
+            const auto& a = fluid->particles.acceleration();
+            forEachParticleOf(*fluid, [&](std::size_t i) { v[i] += dt * a[i]; });
+            core.advanceDensity(s, *fluid, dt); // with v_{n+1}, at x_n
+            core.drift(s, *fluid, dt, v, fluid->particles.position());
+        }
     }
 };
 } // namespace

@@ -17,11 +17,11 @@ using namespace spindrift;
 
 class VelocityVerlet final : public CarriedAccelerationIntegrator {
 public:
-    explicit VelocityVerlet(const ModelContext&) {}
+    explicit VelocityVerlet(const ModelContext&) : CarriedAccelerationIntegrator(true) {}
     int order() const override { return 2; }
 
-    void step(Scene& s, Scalar dt, const Evaluate& evaluate) override {
-        kickDriftKick(s, dt, evaluate, EvaluationVelocity::predicted);
+    void step(Scene& s, const StepServices& core, Scalar dt, const Evaluate& evaluate) override {
+        kickDriftKick(s, core, dt, evaluate, EvaluationVelocity::predicted);
     }
 };
 } // namespace

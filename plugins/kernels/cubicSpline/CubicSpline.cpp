@@ -13,7 +13,7 @@ using spindrift::Scalar;
 class CubicSpline final : public spindrift::Kernel {
 public:
     explicit CubicSpline(const spindrift::ModelContext& c)
-        : Kernel(c.physics.supportRadius, c.physics.dimension),
+        : Kernel(c.constants.supportRadius, c.physics.dimension),
           sigma_(dim_ == 2 ? 40.0 / (7.0 * std::numbers::pi * h_ * h_) : 8.0 / (std::numbers::pi * h_ * h_ * h_)) {}
 
     Scalar W(Scalar r) const override {

@@ -17,7 +17,7 @@ using spindrift::Scalar;
 class Poly6Spiky final : public spindrift::Kernel {
 public:
     explicit Poly6Spiky(const spindrift::ModelContext& c)
-        : Kernel(c.physics.supportRadius, c.physics.dimension), poly6_(h_, dim_), spiky_(h_, dim_),
+        : Kernel(c.constants.supportRadius, c.physics.dimension), poly6_(h_, dim_), spiky_(h_, dim_),
           viscosity_(h_, dim_) {}
 
     Scalar W(Scalar r) const override { return Scalar(poly6_.W(r)); }

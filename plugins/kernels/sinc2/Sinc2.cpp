@@ -20,7 +20,7 @@ using spindrift::Scalar;
 
 class Sinc2 final : public spindrift::Kernel {
 public:
-    explicit Sinc2(const spindrift::ModelContext& c) : Kernel(c.physics.supportRadius, c.physics.dimension) {
+    explicit Sinc2(const spindrift::ModelContext& c) : Kernel(c.constants.supportRadius, c.physics.dimension) {
         constexpr double cin2Pi = 2.4376533930572244118; // Cin(2π)
         a0_ = dim_ == 2 ? std::numbers::pi / (cin2Pi * h_ * h_) : std::numbers::pi / (2 * h_ * h_ * h_);
         k_ = std::numbers::pi / h_; // ds/dr

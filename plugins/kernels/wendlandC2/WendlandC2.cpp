@@ -12,7 +12,7 @@ using spindrift::Scalar;
 class WendlandC2 final : public spindrift::Kernel {
 public:
     explicit WendlandC2(const spindrift::ModelContext& c)
-        : Kernel(c.physics.supportRadius, c.physics.dimension),
+        : Kernel(c.constants.supportRadius, c.physics.dimension),
           sigma_(dim_ == 2 ? 7.0 / (std::numbers::pi * h_ * h_) : 21.0 / (2.0 * std::numbers::pi * h_ * h_ * h_)) {}
 
     Scalar W(Scalar r) const override {

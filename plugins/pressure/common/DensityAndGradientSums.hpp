@@ -30,20 +30,22 @@ struct DensityAndGradientSumsTerm {
         sum.wall += q.mass() * q.W;
         const Vec3 g = q.mass() * q.gradW;
         sum.wallGrad += g;
-        if (q.wall.mirrored) sum.mirroredGrad += g;
-        if (q.wall.moving) sum.wallRate += q.wall.v[q.j].dot(g);
+        if (q.src.mirrored) sum.mirroredGrad += g;
+        if (q.src.moving) sum.wallRate += q.src.v[q.j].dot(g);
     }
 };
 
-// out(i, sum) with DensityAndGradientSumsTerm's sums of every fluid particle i at positions x, on
-// the lists of the search's last build (which must be at x); the pair gradients fill the scene's
-// cache, valid from then on for that build (the density pass of pcisph, iisph and dfsph).
-template <class Out> void densityAndGradientSums(Scene& s, const std::vector<Vec3>& x, Out&& out) {
-    s.gradients.values.resize(s.search.fluidNeighbours().totalPairs());
-    s.gradients.invalidate();
-    forEachPairSum(s, x, DensityAndGradientSumsTerm{s.gradients.values.data()},
+// out(i, sum) with DensityAndGradientSumsTerm's sums of every particle i of the fluid at
+// positions x, on the lists of the search's last build (which must be at x); the pair gradients
+// fill the fluid's cache, valid from then on for those lists (the density pass of pcisph, iisph
+// and dfsph).
+template <class Out> void densityAndGradientSums(Scene& s, ParticleSystem& fluid, const std::vector<Vec3>& x, Out&& out) {
+    const QueryLists& q = s.listsOf(fluid);
+    fluid.gradients.values.resize(q.own().totalPairs());
+    fluid.gradients.invalidate();
+    forEachPairSum(s, fluid, x, DensityAndGradientSumsTerm{fluid.gradients.values.data()},
                    [&](std::size_t i, const auto&, const DensityAndGradientSumsTerm::Sum& sum) { out(i, sum); });
-    s.gradients.build = s.search.builds();
+    fluid.gradients.stamp = q.stamp();
 }
 
 // Σ_j (u_i − u_j)·∇W_ij over the fluid pairs, for any per-particle vector u (a velocity: the

@@ -79,31 +79,12 @@ struct CompressionError {
     Scalar max = 0, avg = 0;
 };
 
-// One parallel pass (it runs every solver iteration): maximum and sum over fixed blocks,
-// combined in order.
+// One parallel pass (it runs every solver iteration).
 inline CompressionError compressionError(const std::vector<Scalar>& rho, Scalar rho0) {
     const std::size_t n = rho.size();
     if (n == 0) return {};
-    constexpr std::size_t block = 4096;
-    const std::size_t blocks = (n + block - 1) / block;
-    std::vector<double> sums(blocks, 0.0), maxima(blocks, 0.0);
-#pragma omp parallel for schedule(static)
-    for (std::size_t b = 0; b < blocks; ++b) {
-        double sum = 0, max = 0;
-        for (std::size_t i = b * block, end = std::min(n, (b + 1) * block); i < end; ++i) {
-            const double e = std::max(Scalar(0), (rho[i] - rho0) / rho0);
-            sum += e;
-            max = std::max(max, e);
-        }
-        sums[b] = sum;
-        maxima[b] = max;
-    }
-    double sum = 0, max = 0;
-    for (std::size_t b = 0; b < blocks; ++b) {
-        sum += sums[b];
-        max = std::max(max, maxima[b]);
-    }
-    return {Scalar(max), Scalar(sum / double(n))};
+    const SumAndMax e = deterministicSumAndMax(n, [&](std::size_t i) { return std::max(Scalar(0), (rho[i] - rho0) / rho0); });
+    return {Scalar(e.max), Scalar(e.sum / double(n))};
 }
 
 } // namespace spindrift

@@ -48,6 +48,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace spindrift {
@@ -99,7 +100,7 @@ public:
     }
 
     void initialise(Scene& s) {
-        const Scalar m = s.fluid.particleMass();
+        const Scalar m = s.constants.particleMass;
         volume_ = m / rho0_;
         const LatticeGradientSums proto = latticeGradientSums(s.kernel, s.physics.particleSpacing, s.physics.dimension);
         d0_ = volume_ * volume_ * Scalar(proto.gradSumSquared + proto.sumGradSquared);
@@ -107,10 +108,12 @@ public:
         epsilon_ = options_.epsilon * d0_;
         relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension,
                                                     1 + options_.omega, name_ + ": the position update (1 + omega)"));
-        wDeltaQ_ = s.kernel.W(options_.sCorrDeltaQ * s.kernel.supportRadius());
-        lambda_ = &s.fluid.addScalar("pbfLambda", {false, true});
-        lambdaStart_ = &s.fluid.addScalar("pbfLambdaStart", {false, false});
-        relaxInitialPositions(s);
+        wDeltaQ_ = s.kernel.W(options_.sCorrDeltaQ * s.constants.supportRadius);
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+            fluid->particles.addScalar("pbfLambda", {false, true}); // λ/Δt² of the last step
+            fluid->particles.addScalar("pbfLambdaStart", {false, false}); // the warm start's source
+            relaxInitialPositions(s, *fluid);
+        }
         std::ostringstream msg;
         msg << name_ << ": omega " << options_.omega << ", warm start " << options_.warmStart << ", density "
  << (options_.clampDensity ? "clamped to rho0 from below" : "not clamped")
@@ -119,16 +122,18 @@ public:
     }
 
     // ρ_i = m (W0 + Σ_j W_ij) + ρ0 Σ_b V_b W_ib at the current positions.
-    void computeDensity(Scene& s) const { summationDensity(s, s.fluid.position(), s.fluid.density()); }
+    void computeDensity(Scene& s, ParticleSystem& fluid) const {
+        summationDensity(s, fluid, fluid.particles.position(), fluid.particles.density());
+    }
 
-    void solve(Scene& s, Scalar dt) {
-        const std::size_t n = s.fluid.size();
-        const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
-        auto& a = s.fluid.acceleration();
-        auto& p = s.fluid.pressure();
-        auto& lambdaPerDt2 = *lambda_;
-        auto& start = *lambdaStart_;
+    void solve(Scene& s, ParticleSystem& fluid, Scalar dt) {
+        const std::size_t n = fluid.size();
+        const auto& x = fluid.particles.position();
+        const auto& v = fluid.particles.velocity();
+        auto& a = fluid.particles.acceleration();
+        auto& p = fluid.particles.pressure();
+        auto& lambdaPerDt2 = *fluid.particles.findScalar("pbfLambda");
+        auto& start = *fluid.particles.findScalar("pbfLambdaStart");
         predicted_.resize(n);
         correction_.assign(n, Vec3::Zero());
         step_.resize(n);
@@ -138,18 +143,17 @@ public:
 
         // The warm start comes from the previous step, also when the state is evaluated again
         // at the same time (the solver's initial evaluation, a restart).
-        if (s.time != lastSolveTime_) {
+        double& lastSolveTime = lastSolveTime_[fluid.name()];
+        if (s.time != lastSolveTime) {
             start.assign(lambdaPerDt2.begin(), lambdaPerDt2.end());
-            lastSolveTime_ = s.time;
+            lastSolveTime = s.time;
         }
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) predicted_[i] = x[i] + dt * (v[i] + dt * a[i]);
+        forEachIndex(n, [&](std::size_t i) { predicted_[i] = x[i] + dt * (v[i] + dt * a[i]); });
 
         if (options_.warmStart > 0) {
             const Scalar w = options_.warmStart * dt * dt;
-#pragma omp parallel for schedule(static)
-            for (std::size_t i = 0; i < n; ++i) lambdaTotal_[i] = w * start[i];
-            positionCorrection(s, lambdaTotal_, false);
+            forEachIndex(n, [&](std::size_t i) { lambdaTotal_[i] = w * start[i]; });
+            positionCorrection(s, fluid, lambdaTotal_, false);
             applyCorrection(Scalar(1));
         }
 
@@ -157,22 +161,32 @@ public:
         int iterations = 0;
         CompressionError err;
         for (;;) {
-            constraintStep(s);
+            constraintStep(s, fluid);
             err = compressionError(rhoPredicted_, rho0_);
             if (controls_.done(iterations, err.max, err.avg)) break;
-            positionCorrection(s, dLambda_, options_.sCorrK > 0 && iterations == 0);
+            positionCorrection(s, fluid, dLambda_, options_.sCorrK > 0 && iterations == 0);
             applyCorrection(relax, true);
             ++iterations;
         }
 
         const Scalar invDt2 = 1 / (dt * dt);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        forEachIndex(n, [&](std::size_t i) {
             a[i] += correction_[i] * invDt2;
             lambdaPerDt2[i] = lambdaTotal_[i] * invDt2;
             p[i] = -rho0_ * lambdaTotal_[i] * invDt2;
-        }
+        });
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
+    }
+
+    // The wall part of the position correction as an acceleration, Σ_b (M_b/ρ0) λ_i ∇W_ib / Δt² =
+    // −Σ_b M_b (p_i/ρ0²) ∇W_ib with the step's total multiplier, at the converged positions x*
+    // (the iterations' own positions differ by their corrections).
+    void addReactions(const Scene& s, const ParticleSystem& fluid, Reactions& r) const {
+        const auto& p = fluid.particles.pressure();
+        pOverRho02_.resize(p.size());
+        const Scalar inv = 1 / (rho0_ * rho0_);
+        forEachIndex(p.size(), [&](std::size_t i) { pOverRho02_[i] = p[i] * inv; });
+        addOneSidedWallPressureReactions(s, fluid, predicted_, pOverRho02_.data(), r);
     }
 
     const SolverStats& stats() const { return stats_; }
@@ -183,11 +197,11 @@ private:
     // fluid can start compressed beside them. The solver would remove that in its first step
     // and turn the displacement into a velocity Δx/Δt; instead the initial positions are
     // projected onto the density constraint here, without touching the velocities.
-    void relaxInitialPositions(Scene& s) {
-        const std::size_t n = s.fluid.size();
-        if (n == 0 || !s.hasWalls()) return;
-        auto& x = s.fluid.position();
-        s.search.build(x);
+    void relaxInitialPositions(Scene& s, ParticleSystem& fluid) {
+        const std::size_t n = fluid.size();
+        if (n == 0 || s.boundaries().empty()) return;
+        auto& x = fluid.particles.position();
+        s.search.build();
         predicted_ = x;
         correction_.assign(n, Vec3::Zero());
         step_.resize(n);
@@ -197,19 +211,20 @@ private:
         CompressionError start, err;
         int k = 0;
         for (;; ++k) {
-            if (k > 0 && k % rebuildEvery == 0) s.search.build(predicted_);
-            constraintStep(s);
+            if (k > 0 && k % rebuildEvery == 0) s.search.buildAhead(fluid.index, predicted_);
+            constraintStep(s, fluid);
             err = compressionError(rhoPredicted_, rho0_);
             if (k == 0) start = err;
             if (controls_.converged(err.max, err.avg) || k == maxRelaxation) break;
-            positionCorrection(s, dLambda_, false);
+            positionCorrection(s, fluid, dLambda_, false);
             applyCorrection(1 + options_.omega);
         }
         if (k == 0) return;
         Scalar shift = 0;
         for (std::size_t i = 0; i < n; ++i) shift = std::max(shift, correction_[i].norm());
         x = predicted_;
-        s.search.build(x);
+        s.search.positionsChanged(fluid.index);
+        s.search.build();
         std::ostringstream msg;
         msg << name_ << ": initial positions relaxed against the walls in " << k << " iterations (density error max "
             << 100 * start.max << "% avg " << 100 * start.avg << "% -> max " << 100 * err.max << "% avg "
@@ -240,10 +255,10 @@ private:
     };
 
     // ρ*, C and Δλ at the predicted positions.
-    void constraintStep(const Scene& s) {
-        const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0(), rho0 = rho0_, V = volume_, eps = epsilon_;
+    void constraintStep(const Scene& s, const ParticleSystem& fluid) {
+        const Scalar m = fluid.particles.particleMass(), w0 = s.kernel.W0(), rho0 = rho0_, V = volume_, eps = epsilon_;
         const bool clamp = options_.clampDensity;
-        forEachPairSum(s, predicted_, ConstraintTerm{1 / rho0}, [&](std::size_t i, const auto&, const auto& sum) {
+        forEachPairSum(s, fluid, predicted_, ConstraintTerm{1 / rho0}, [&](std::size_t i, const auto&, const auto& sum) {
             const Scalar rho = m * (w0 + sum.w) + sum.wall;
             const Vec3 grad = V * sum.grad + sum.wallGrad;
             rhoPredicted_[i] = rho;
@@ -279,24 +294,22 @@ private:
     };
 
     // step_ = V Σ_j (l_i + l_j + s_corr) ∇W_ij + Σ_b V_b l_i ∇W_ib at the predicted positions.
-    void positionCorrection(const Scene& s, const std::vector<Scalar>& l, bool sCorr) {
+    void positionCorrection(const Scene& s, const ParticleSystem& fluid, const std::vector<Scalar>& l, bool sCorr) {
         const Scalar V = volume_;
         const CorrectionTerm term{s.kernel, l.data(), 1 / rho0_, sCorr ? options_.sCorrK / d0_ : Scalar(0),
                                   wDeltaQ_ > 0 ? 1 / wDeltaQ_ : 0, options_.sCorrN};
-        forEachPairSum(s, predicted_, term,
+        forEachPairSum(s, fluid, predicted_, term,
                        [&](std::size_t i, const auto&, const auto& sum) { step_[i] = V * sum.fluid + sum.wall; });
     }
 
     // x* += factor · step, and (accumulateLambda) λ += factor · Δλ, in one pass.
     void applyCorrection(Scalar factor, bool accumulateLambda = false) {
-        const std::size_t n = predicted_.size();
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        forEachIndex(predicted_.size(), [&](std::size_t i) {
             const Vec3 d = factor * step_[i];
             predicted_[i] += d;
             correction_[i] += d;
             if (accumulateLambda) lambdaTotal_[i] += factor * dLambda_[i];
-        }
+        });
     }
 
     PositionBasedOptions options_;
@@ -305,11 +318,11 @@ private:
     Scalar rho0_;
     Scalar volume_ = 0, d0_ = 0, epsilon_ = 0, wDeltaQ_ = 0;
     Scalar relaxation_ = 1; // (1 + omega) × jacobiRelaxationScale (LatticePrototype.hpp)
-    std::vector<Scalar>* lambda_ = nullptr;      // field pbfLambda: λ/Δt² of the last step
-    std::vector<Scalar>* lambdaStart_ = nullptr; // field pbfLambdaStart: warm-start source
-    double lastSolveTime_ = std::numeric_limits<double>::quiet_NaN();
+    // each fluid's time of its last solve (the warm start's source is taken once a time)
+    std::map<std::string, double> lastSolveTime_;
     std::vector<Vec3> predicted_, correction_, step_;
     std::vector<Scalar> lambdaTotal_, dLambda_, rhoPredicted_; // λ of this solve, its increment, ρ*
+    mutable std::vector<Scalar> pOverRho02_;                    // scratch of addReactions
     SolverStats stats_;
 };
 
@@ -322,8 +335,13 @@ public:
     PositionBasedPressureModel(const ModelContext& c, PositionBasedOptions defaults, std::string name)
         : solver_(c, defaults, {Scalar(0.001), IterativeSolverControls::Norm::Average, 2, 100}, std::move(name)) {}
     void initialise(Scene& s) override { solver_.initialise(s); }
-    void computeDensity(Scene& s) override { solver_.computeDensity(s); }
-    void addPressureAcceleration(Scene& s, Scalar dt) override { solver_.solve(s, dt); }
+    void computeDensity(Scene& s, ParticleSystem& fluid, const Step&) override { solver_.computeDensity(s, fluid); }
+    void addPressureAcceleration(Scene& s, ParticleSystem& fluid, const Step& step) override {
+        solver_.solve(s, fluid, step.dt);
+    }
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        solver_.addReactions(s, fluid, r);
+    }
     ResultKind result() const override { return ResultKind::positionChange; }
     bool isIterative() const override { return true; }
     SolverStats lastSolve() const override { return solver_.stats(); }

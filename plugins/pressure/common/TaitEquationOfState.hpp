@@ -9,10 +9,10 @@
 // deficit at a free surface, the density a density-diffusion term (δ-SPH) acts on, and the one
 // a hydrostatic start sets).
 // The sound speed is resolved once at set-up (resolveSoundSpeed, through the pressure model's
-// soundSpeed()) and read back from Scene::constants in initialise().
+// soundSpeed()) and read back from Scene::constants in initialise(). With continuity density the
+// core advances the density (PressureModel::integratesDensity, StepServices::advanceDensity).
 #pragma once
 
-#include "DensityDiffusion.hpp"
 #include "Dictionary.hpp"
 #include "Log.hpp"
 #include "PairLoop.hpp"
@@ -58,27 +58,20 @@ struct TaitEquationOfState {
 
     // Takes the sound speed the core resolved (Scene::constants), or resolves it the same way
     // where no core did (a model made by hand, as in the unit tests). With continuity density the
-    // density becomes a field the integrator advances with its rate: its start is the one set-up
-    // gave (ρ0, or a hydrostatic start's).
+    // density is a field the core advances with its rate: its start is the one set-up gave (ρ0,
+    // or a hydrostatic start's).
     void initialise(Scene& s) {
         soundSpeed = s.constants.soundSpeed > 0 ? s.constants.soundSpeed : resolveSoundSpeed(s.constants, s.physics);
         B = soundSpeed * soundSpeed * rho0 / gamma;
-        if (continuity)
-            s.integratedFields.push_back({&s.fluid.density(), &s.fluid.addScalar("densityRate", {false, false}),
-                                          [](const Scene& scene, std::vector<Scalar>& rate) {
-                                              if (scene.densityDiffusion) scene.densityDiffusion->densityRate(scene, rate);
-                                              else continuityDensityRate(scene, rate);
-                                          }});
     }
 
-    // The weakly compressible density and pressure: summation density (walls included), or the
-    // integrated density as it is (continuity), then p_i = p(ρ_i) for every fluid particle.
-    void densityAndPressure(Scene& s) const {
-        auto& rho = s.fluid.density();
-        auto& p = s.fluid.pressure();
-        if (!continuity) summationDensity(s, s.fluid.position(), rho);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < rho.size(); ++i) p[i] = pressure(rho[i]);
+    // The weakly compressible density and pressure: summation density (boundaries included), or
+    // the integrated density as it is (continuity), then p_i = p(ρ_i) for every particle.
+    void densityAndPressure(Scene& s, ParticleSystem& fluid) const {
+        auto& rho = fluid.particles.density();
+        auto& p = fluid.particles.pressure();
+        if (!continuity) summationDensity(s, fluid, fluid.particles.position(), rho);
+        forEachIndex(rho.size(), [&](std::size_t i) { p[i] = pressure(rho[i]); });
     }
 
     Scalar pressure(Scalar rho) const {

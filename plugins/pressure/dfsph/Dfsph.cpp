@@ -85,16 +85,19 @@ public:
     }
 
     void initialise(Scene& s) override {
-        kappa_ = &s.fluid.addScalar("dfsphKappa", {false, true});
-        kappaV_ = &s.fluid.addScalar("dfsphKappaV", {false, true});
-        if (checkPositions_) {
-            offset_ = &s.fluid.addScalar("dfsphDensityOffset", {false, true});
-            nextDensity_ = &s.fluid.addScalar("dfsphNextDensity", scratch);
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+            auto& set = fluid->particles;
+            set.addScalar("dfsphKappa", {false, true});
+            set.addScalar("dfsphKappaV", {false, true});
+            if (checkPositions_) {
+                set.addScalar("dfsphDensityOffset", {false, true});
+                set.addScalar("dfsphNextDensity", scratch);
+            }
+            // kept from a passed check to the next step, so they move with the particles
+            set.addScalar("dfsphAlphaOverRho", scratch);
+            set.addVector("dfsphWallGradient", scratch);
+            set.addScalar("dfsphWallRate", scratch);
         }
-        // kept from a passed check to the next step, so they move with the particles
-        alphaOverRho_ = &s.fluid.addScalar("dfsphAlphaOverRho", scratch);
-        wallGradient_ = &s.fluid.addVector("dfsphWallGradient", scratch);
-        wallRate_ = &s.fluid.addScalar("dfsphWallRate", scratch);
         minNeighbours_ = s.physics.dimension == 3 ? 20 : 7;
         relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
                                                     "dfsph: both solves"));
@@ -105,55 +108,60 @@ public:
     // ρ_i, α_i, the pair gradients and the wall sums at the current positions; taken over from
     // the last step's check when it searched at exactly these positions (the core then kept
     // that search, and the cached gradients are still valid).
-    void computeDensity(Scene& s) override {
-        if (checkPassed_ && s.search.builtAt(s.fluid.position()) && s.gradients.validFor(s.search)) {
-            s.fluid.density().swap(*nextDensity_);
-            checkPassed_ = false;
+    void computeDensity(Scene& s, ParticleSystem& fluid, const Step&) override {
+        const Fields f = fieldsOf(fluid);
+        const QueryLists& q = s.listsOf(fluid);
+        char& passed = checkPassed(fluid);
+        if (passed && s.search.builtAt(fluid.index, fluid.particles.position()) && fluid.gradients.validFor(q)) {
+            fluid.particles.density().swap(*f.nextDensity);
+            passed = 0;
             ++checksTaken_;
             return;
         }
-        if (checkPassed_ && ++checksNotTaken_ == 20 && checksTaken_ == 0)
+        if (passed && ++checksNotTaken_ == 20 && checksTaken_ == 0)
             log::warning("dfsph: the positions of the step are never those checkPositions checked (x + deltaT v, "
                          "as symplecticEuler computes them): the check is approximate and costs a neighbour "
                          "search of its own each step");
-        checkPassed_ = false;
-        densityAndFactors(s, s.fluid.position(), s.fluid.density());
+        passed = 0;
+        densityAndFactors(s, fluid, fluid.particles.position(), fluid.particles.density());
     }
 
-    void addPressureAcceleration(Scene& s, Scalar dt) override {
-        const std::size_t n = s.fluid.size();
-        const auto& v = s.fluid.velocity();
-        const auto& rho = s.fluid.density();
-        auto& a = s.fluid.acceleration();
-        auto& p = s.fluid.pressure();
-        if (!s.gradients.validFor(s.search))
+    void addPressureAcceleration(Scene& s, ParticleSystem& fluid, const Step& step) override {
+        const Scalar dt = step.dt;
+        const std::size_t n = fluid.size();
+        const auto& v = fluid.particles.velocity();
+        const auto& rho = fluid.particles.density();
+        auto& a = fluid.particles.acceleration();
+        auto& p = fluid.particles.pressure();
+        const QueryLists& lists = s.listsOf(fluid);
+        if (!fluid.gradients.validFor(lists))
             throw std::logic_error("dfsph: computeDensity must run after each neighbour search (it caches the gradients)");
+        const Fields f = fieldsOf(fluid);
         velocity_.resize(n);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) velocity_[i] = v[i];
+        forEachIndex(n, [&](std::size_t i) { velocity_[i] = v[i]; });
         rate_.resize(n);
         kappaOverRho_.resize(n);
         const Scalar invDt = 1 / dt, invDt2 = invDt * invDt, relaxPerDt = relaxation_ * invDt, relaxPerDt2 = relaxation_ * invDt2;
-        const Scalar* alphaOverRho = alphaOverRho_->data();
-        const auto& ff = s.search.fluidNeighbours();
+        const Scalar* alphaOverRho = f.alphaOverRho->data();
+        const auto& ff = lists.own();
 
         // 1. divergence solve: remove the compressing part of the velocity field. Per iteration
         //    one pass for Dρ/Dt and the next κ/ρ, the average error, one pass for the velocities.
         if (divergenceSolve_) {
             int divergenceIterations = 0;
-            auto& kv = *kappaV_;
+            auto& kv = *f.kappaV;
             // warm start only where the fluid still compresses (SPlisHSPlasH's condition: a
             // surface particle's last push, carried into a step where it expands, shot the
             // Colagrossi column's top layer up at 11 m/s)
             const auto warmWhereCompressing = [&](std::size_t i, Scalar rate) {
-                const bool full = ff.count(i) + s.search.wallNeighbourCount(i) >= minNeighbours_;
+                const bool full = ff.count(i) + lists.otherNeighbourCount(i) >= minNeighbours_;
                 if (!(full && rate > 0)) kv[i] = 0;
             };
-            if (warmStart_ > 0) densityRatePass(s, warmWhereCompressing, WarmStartRateTerm{{}, kv.data()});
-            warmStartVelocities(s, kv, dt, invDt);
+            if (warmStart_ > 0) densityRatePass(s, fluid, warmWhereCompressing, WarmStartRateTerm{{}, kv.data()});
+            warmStartVelocities(s, fluid, kv, dt, invDt);
             for (;;) {
-                densityRatePass(s, [&](std::size_t i, Scalar rate) {
-                    const bool full = ff.count(i) + s.search.wallNeighbourCount(i) >= minNeighbours_;
+                densityRatePass(s, fluid, [&](std::size_t i, Scalar rate) {
+                    const bool full = ff.count(i) + lists.otherNeighbourCount(i) >= minNeighbours_;
                     rate = full ? std::max(rate, Scalar(0)) : Scalar(0);
                     rate_[i] = rate;
                     kappaOverRho_[i] = rate * alphaOverRho[i] * relaxPerDt;
@@ -162,14 +170,13 @@ public:
                 if (divergenceIterations >= maxDivergenceIterations_ ||
                     (divergenceIterations >= 1 && error <= maxDivergenceError_))
                     break;
-                applyStiffness(s, dt, &kv);
+                applyStiffness(s, fluid, dt, &kv);
                 ++divergenceIterations;
             }
         }
 
         // 2. non-pressure accelerations
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) velocity_[i] += dt * a[i];
+        forEachIndex(n, [&](std::size_t i) { velocity_[i] += dt * a[i]; });
 
         // 3. density solve: the predicted density ρ*_i = ρ_i + δ_i + Δt Dρ_i/Dt back to ρ0. With
         //    checkPositions, a solve that meets η is checked on the density at the positions
@@ -179,12 +186,11 @@ public:
         //    linearises again about the checked positions: their lists, gradients and α, and
         //    ρ*_i = ρ_i(x + Δt v*) + Δt (Dρ_i/Dt(v) − Dρ_i/Dt(v*)) there; the solve goes on until
         //    a check passes.
-        auto& k = *kappa_;
-        Scalar* offset = offset_ ? offset_->data() : nullptr; // δ of the last step to start with
+        auto& k = *f.kappa;
+        Scalar* offset = f.offset ? f.offset->data() : nullptr; // δ of the last step to start with
         baseDensity_.resize(n);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) baseDensity_[i] = rho[i] + (offset ? offset[i] : Scalar(0));
-        warmStartVelocities(s, k, dt, invDt2);
+        forEachIndex(n, [&](std::size_t i) { baseDensity_[i] = rho[i] + (offset ? offset[i] : Scalar(0)); });
+        warmStartVelocities(s, fluid, k, dt, invDt2);
         const auto stiffness = [&](std::size_t i, Scalar predicted) {
             rate_[i] = predicted;
             kappaOverRho_[i] = std::max(predicted - rho0_, Scalar(0)) * alphaOverRho[i] * relaxPerDt2;
@@ -192,46 +198,55 @@ public:
         int iterations = 0, checks = 0;
         CompressionError err;
         for (;;) {
-            densityRatePass(s, [&](std::size_t i, Scalar rate) { stiffness(i, baseDensity_[i] + dt * rate); });
+            densityRatePass(s, fluid, [&](std::size_t i, Scalar rate) { stiffness(i, baseDensity_[i] + dt * rate); });
             err = compressionError(rate_, rho0_);
             if (controls_.done(iterations, err.max, err.avg)) {
                 if (!checkPositions_ || iterations >= controls_.maxIterations || checks == maxPositionChecks) break;
-                searchAhead(s, dt);
+                searchAhead(s, fluid, step);
                 ++checks;
-                const auto& next = *nextDensity_;
+                const auto& next = *f.nextDensity;
                 err = compressionError(next, rho0_);
                 if (controls_.converged(err.max, err.avg)) {
-#pragma omp parallel for schedule(static)
-                    for (std::size_t i = 0; i < n; ++i) offset[i] += next[i] - rate_[i];
-                    checkPassed_ = true; // the next evaluation's search and density
+                    forEachIndex(n, [&](std::size_t i) { offset[i] += next[i] - rate_[i]; });
+                    checkPassed(fluid) = 1; // the next evaluation's search and density
                     break;
                 }
-                densityRatePass(s, [&](std::size_t i, Scalar rate) { // Dρ/Dt(v*) about the checked positions
+                densityRatePass(s, fluid, [&](std::size_t i, Scalar rate) { // Dρ/Dt(v*) about the checked positions
                     const Scalar real = next[i];
                     offset[i] += real - rate_[i];
                     stiffness(i, real);
                     baseDensity_[i] = real - dt * rate;
                 });
             }
-            applyStiffness(s, dt, &k);
+            applyStiffness(s, fluid, dt, &k);
             ++iterations;
         }
 
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        auto& kv = *f.kappaV;
+        forEachIndex(n, [&](std::size_t i) {
             a[i] = (velocity_[i] - v[i]) * invDt;
             // κ is p/ρ (eq. 9); the step's pressure acts in both solves: the divergence solve's
             // κ_v (the velocities' compressing part) and the density solve's κ — p from κ alone
             // read a still column 34 % low
-            p[i] = rho[i] * (k[i] + (divergenceSolve_ ? (*kappaV_)[i] : Scalar(0)));
+            p[i] = rho[i] * (k[i] + (divergenceSolve_ ? kv[i] : Scalar(0)));
             // kept for the next warm start as the step's velocity change per unit of κ's
             // gradient: κ_v Δt and κ Δt² (as SPlisHSPlasH), not κ, so a step of another Δt
             // starts from the same velocity change (a κ carried over from a step 2.5× shorter
             // applied 2.5× the push: the Colagrossi column's top shot up at 11 m/s while Δt grew)
             k[i] *= dt * dt;
-            if (divergenceSolve_) (*kappaV_)[i] *= dt;
-        }
+            if (divergenceSolve_) kv[i] *= dt;
+        });
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
+    }
+
+    // The wall term acts once, v_i −= Δt κ_i/ρ_i Σ_b M_b ∇W_ib over both solves, with the step's
+    // total κ = p/ρ: a_ib = −M_b (p_i/ρ_i²) ∇W_ib at the step's positions.
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        const auto& p = fluid.particles.pressure();
+        const auto& rho = fluid.particles.density();
+        pOverRho2_.resize(p.size());
+        forEachIndex(p.size(), [&](std::size_t i) { pOverRho2_[i] = p[i] / (rho[i] * rho[i]); });
+        addOneSidedWallPressureReactions(s, fluid, fluid.particles.position(), pOverRho2_.data(), r);
     }
 
     bool isIterative() const override { return true; }
@@ -239,6 +254,28 @@ public:
 
 private:
     static constexpr FieldOptions scratch{false, false, true};
+
+    // Its fields of a fluid: κ of the density solve and κ of the divergence solve (restart
+    // fields), δ (checkPositions), and the scratch of the density pass: α_i/ρ_i = 1/(eq. 8's
+    // denominator), Σ_b M_b ∇W_ib, Σ_b M_b v_b·∇W_ib, the density at the positions of the last
+    // check.
+    struct Fields {
+        std::vector<Scalar>*kappa, *kappaV, *offset, *nextDensity, *alphaOverRho, *wallRate;
+        std::vector<Vec3>* wallGradient;
+    };
+    static Fields fieldsOf(ParticleSystem& fluid) {
+        auto& set = fluid.particles;
+        return {set.findScalar("dfsphKappa"),        set.findScalar("dfsphKappaV"),
+                set.findScalar("dfsphDensityOffset"), set.findScalar("dfsphNextDensity"),
+                set.findScalar("dfsphAlphaOverRho"), set.findScalar("dfsphWallRate"),
+                set.findVector("dfsphWallGradient")};
+    }
+    // Whether the last solve's check of the fluid passed: its search is then the next step's.
+    char& checkPassed(const ParticleSystem& fluid) {
+        if (checkPassed_.size() <= fluid.index) checkPassed_.resize(fluid.index + 1, 0);
+        return checkPassed_[fluid.index];
+    }
+    std::vector<char> checkPassed_;
 
     // FluidDivergenceTerm for the particles that carry a warm start (κ_v ≠ 0) only: for the
     // others Dρ/Dt decides nothing, as their warm start is zero.
@@ -251,25 +288,27 @@ private:
     // of velocity_ (the cached gradients; the walls' sums were taken with the density, so no wall
     // pair is visited in the solves); with a term that visits only some particles, for those.
     template <class Then, class Term = FluidDivergenceTerm>
-    void densityRatePass(const Scene& s, Then&& then, Term term = {}) {
-        const Scalar m = s.fluid.particleMass();
-        const Vec3* g = wallGradient_->data();
-        const Scalar* wallRate = wallRate_->data();
+    void densityRatePass(const Scene& s, ParticleSystem& fluid, Then&& then, Term term = {}) {
+        const Scalar m = fluid.particles.particleMass();
+        const Fields f = fieldsOf(fluid);
+        const Vec3* g = f.wallGradient->data();
+        const Scalar* wallRate = f.wallRate->data();
         term.u = velocity_.data();
-        forEachCachedPairSum(s, term, [&](std::size_t i, const Vec3& ui, Scalar fluid) {
-            then(i, m * fluid + ui.dot(g[i]) - wallRate[i]);
+        forEachCachedPairSum(s, fluid, term, [&](std::size_t i, const Vec3& ui, Scalar sum) {
+            then(i, m * sum + ui.dot(g[i]) - wallRate[i]);
         });
     }
 
     // ρ_i, α_i, the pair gradients and the wall sums at positions x, on the lists of the search's
     // last build (which must be at x), the density into rho.
-    void densityAndFactors(Scene& s, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
-        const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0(), h = s.constants.supportRadius;
+    void densityAndFactors(Scene& s, ParticleSystem& fluid, const std::vector<Vec3>& x, std::vector<Scalar>& rho) {
+        const Scalar m = fluid.particles.particleMass(), w0 = s.kernel.W0(), h = s.constants.supportRadius;
         const Scalar tiny = Scalar(1e-9) * rho0_ * rho0_ / (h * h);
         rho.resize(x.size());
-        auto& alphaOverRho = *alphaOverRho_;
-        auto& wallGradient = *wallGradient_;
-        auto& wallRate = *wallRate_;
+        const Fields f = fieldsOf(fluid);
+        auto& alphaOverRho = *f.alphaOverRho;
+        auto& wallGradient = *f.wallGradient;
+        auto& wallRate = *f.wallRate;
         const auto factors = [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
             rho[i] = m * (w0 + sum.w) + sum.wall;
             wallGradient[i] = sum.wallGrad;
@@ -278,41 +317,35 @@ private:
             const Scalar denominator = g.squaredNorm() + m * m * sum.squares;
             alphaOverRho[i] = denominator > tiny ? 1 / denominator : Scalar(0);
         };
-        densityAndGradientSums(s, x, factors);
+        densityAndGradientSums(s, fluid, x, factors);
     }
 
     // The check of checkPositions: the neighbour search, density, α and gradients at the
     // positions velocity_ leads to, computed as the integrator will (symplectic Euler with the
-    // acceleration this model returns, then the periodic wrap), so that, when the check
-    // passes, the next evaluation takes them bit for bit instead of searching again. The
-    // density goes to the scratch field dfsphNextDensity; the step's own lists and factors are
-    // overwritten.
-    void searchAhead(Scene& s, Scalar dt) {
-        const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
-        const Periodicity& periodic = s.search.periodicity();
-        const std::size_t n = x.size();
-        const Scalar invDt = 1 / dt;
-        nextPositions_.resize(n);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+    // acceleration this model returns, then the core's drift), so that, when the check passes,
+    // the next evaluation takes them bit for bit instead of searching again. The density goes to
+    // the scratch field dfsphNextDensity; the step's own lists and factors are overwritten.
+    void searchAhead(Scene& s, ParticleSystem& fluid, const Step& step) {
+        const Scalar dt = step.dt, invDt = 1 / dt;
+        const auto& v = fluid.particles.velocity();
+        nextVelocity_.resize(v.size());
+        forEachIndex(v.size(), [&](std::size_t i) {
             const Vec3 a = (velocity_[i] - v[i]) * invDt;
-            const Vec3 vNext = v[i] + dt * a;
-            nextPositions_[i] = x[i] + dt * vNext;
-            if (periodic.any()) periodic.wrap(nextPositions_[i]);
-        }
-        s.search.buildAhead(nextPositions_);
-        densityAndFactors(s, nextPositions_, *nextDensity_);
+            nextVelocity_[i] = v[i] + dt * a; // as symplectic Euler computes v_{n+1}
+        });
+        step.core.drift(s, fluid, dt, nextVelocity_, nextPositions_);
+        s.search.buildAhead(fluid.index, nextPositions_);
+        densityAndFactors(s, fluid, nextPositions_, *fieldsOf(fluid).nextDensity);
     }
 
     // velocity_ −= Δt [Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + κ_i/ρ_i Σ_b M_b ∇W_ib], κ/ρ in
     // kappaOverRho_; κ_i is added to *kappa (the step's total) when given.
-    void applyStiffness(const Scene& s, Scalar dt, std::vector<Scalar>* kappa) {
-        const Scalar m = s.fluid.particleMass();
-        const auto& rho = s.fluid.density();
-        const Vec3* g = wallGradient_->data();
+    void applyStiffness(const Scene& s, ParticleSystem& fluid, Scalar dt, std::vector<Scalar>* kappa) {
+        const Scalar m = fluid.particles.particleMass();
+        const auto& rho = fluid.particles.density();
+        const Vec3* g = fieldsOf(fluid).wallGradient->data();
         Scalar* total = kappa ? kappa->data() : nullptr;
-        forEachCachedPairSum(s, CachedSymmetricGradientTerm{kappaOverRho_.data()}, [&](std::size_t i, Scalar ki, const Vec3& dv) {
+        forEachCachedPairSum(s, fluid, CachedSymmetricGradientTerm{kappaOverRho_.data()}, [&](std::size_t i, Scalar ki, const Vec3& dv) {
             velocity_[i] -= dt * (m * dv + ki * g[i]);
             if (total) total[i] += ki * rho[i];
         });
@@ -321,16 +354,15 @@ private:
     // Applies warmStart × the last step's κ to velocity_ and keeps it as this step's start.
     // kappa holds the last step's κ Δt (divergence solve; perDt = 1/Δt) or κ Δt² (density solve;
     // perDt = 1/Δt²): the warm start is warmStart × that over this step's Δt.
-    void warmStartVelocities(const Scene& s, std::vector<Scalar>& kappa, Scalar dt, Scalar perDt) {
+    void warmStartVelocities(const Scene& s, ParticleSystem& fluid, std::vector<Scalar>& kappa, Scalar dt, Scalar perDt) {
         const std::size_t n = kappa.size();
-        const auto& rho = s.fluid.density();
+        const auto& rho = fluid.particles.density();
         const Scalar w = warmStart_ * perDt;
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        forEachIndex(n, [&](std::size_t i) {
             kappa[i] *= w;
             kappaOverRho_[i] = kappa[i] / rho[i];
-        }
-        if (w > 0) applyStiffness(s, dt, nullptr);
+        });
+        if (w > 0) applyStiffness(s, fluid, dt, nullptr);
     }
 
     Scalar rho0_, warmStart_, omega_;
@@ -342,17 +374,8 @@ private:
     std::size_t minNeighbours_ = 20;
     IterativeSolverControls controls_;
     std::vector<Scalar> rate_, kappaOverRho_;
-    std::vector<Scalar>* kappa_ = nullptr;  // field dfsphKappa: κ of the density solve
-    std::vector<Scalar>* kappaV_ = nullptr; // field dfsphKappaV: κ of the divergence solve
-    std::vector<Scalar>* offset_ = nullptr; // field dfsphDensityOffset (checkPositions): δ
-    // scratch fields: α_i/ρ_i = 1/(eq. 8's denominator), Σ_b M_b ∇W_ib, Σ_b M_b v_b·∇W_ib, and
-    // (checkPositions) the density at the positions of the last check
-    std::vector<Scalar>* alphaOverRho_ = nullptr;
-    std::vector<Vec3>* wallGradient_ = nullptr;
-    std::vector<Scalar>* wallRate_ = nullptr;
-    std::vector<Scalar>* nextDensity_ = nullptr;
-    std::vector<Vec3> velocity_, nextPositions_;
-    bool checkPassed_ = false;                  // the last solve's check passed: its search is the next step's
+    std::vector<Vec3> velocity_, nextVelocity_, nextPositions_;
+    mutable std::vector<Scalar> pOverRho2_; // scratch of addReactions
     long checksTaken_ = 0, checksNotTaken_ = 0; // passed checks the next step took over, or not
     // the predicted density less Δt Dρ/Dt: ρ_i + δ_i, or about the positions of a failed check
     // ρ_i(x + Δt v*) − Δt Dρ_i/Dt(v*)

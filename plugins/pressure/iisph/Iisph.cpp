@@ -48,7 +48,6 @@
 //   pressure { type iisph; omega 0.5; warmStart 0.5; }
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average; minIterations 2;
 //                           maxIterations 100; }
-#include "BoundaryModel.hpp"
 #include "DensityAndGradientSums.hpp"
 #include "IterativeSolverControls.hpp"
 #include "LatticePrototype.hpp"
@@ -69,9 +68,9 @@ struct OwnWallPressureTerm {
     struct Particle {};
     Particle particle(std::size_t) const { return {}; }
     void wall(const Particle&, const WallPair& q, Sum& sum) const {
-        if (q.wall.mirrored) return;
-        const Scalar rho = q.wall.rho[q.j];
-        sum += (q.mass() * q.wall.p[q.j] / (rho * rho)) * q.gradW;
+        if (q.src.mirrored) return;
+        const Scalar rho = q.src.rho[q.j];
+        sum += (q.mass() * q.src.p[q.j] / (rho * rho)) * q.gradW;
     }
 };
 
@@ -112,43 +111,44 @@ public:
     void initialise(Scene& s) override {
         relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
                                                     "iisph: the Jacobi iteration"));
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+            auto& set = fluid->particles;
+            for (const char* name : {"iisphDiagonal", "iisphInvRho2", "iisphWallRate"}) set.addScalar(name, scratch);
+            for (const char* name : {"iisphWallGrad", "iisphPressureWallGrad"}) set.addVector(name, scratch);
+        }
     }
 
-    void computeDensity(Scene& s) override {
-        const auto& x = s.fluid.position();
-        const std::size_t n = x.size();
-        const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0(), h = s.constants.supportRadius;
+    void computeDensity(Scene& s, ParticleSystem& fluid, const Step&) override {
+        const auto& x = fluid.particles.position();
+        const Scalar m = fluid.particles.particleMass(), w0 = s.kernel.W0(), h = s.constants.supportRadius;
         // a_ii's bracket below this (no neighbours) leaves the particle's pressure at zero
         const Scalar tiny = Scalar(1e-9) * rho0_ * rho0_ / (h * h);
-        auto& rho = s.fluid.density();
-        rho.resize(n);
-        diagonal_.resize(n);
-        invRho2_.resize(n);
-        wallGrad_.resize(n);
-        pressureWallGrad_.resize(n);
-        wallRate_.resize(n);
-        densityAndGradientSums(s, x, [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
+        auto& rho = fluid.particles.density();
+        const Factors f = factorsOf(fluid);
+        densityAndGradientSums(s, fluid, x, [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
             const Scalar r = m * (w0 + sum.w) + sum.wall;
             rho[i] = r;
-            invRho2_[i] = 1 / (r * r);
-            const Vec3 fluid = m * sum.grad;
+            f.invRho2[i] = 1 / (r * r);
+            const Vec3 fluidGrad = m * sum.grad;
             const Vec3 pressureGrad = sum.wallGrad + sum.mirroredGrad; // Σ_b (1 + μ_b) M_b ∇W_ib
-            wallGrad_[i] = sum.wallGrad;
-            pressureWallGrad_[i] = pressureGrad;
-            wallRate_[i] = sum.wallRate;
-            const Scalar bracket = (fluid + pressureGrad).dot(fluid + sum.wallGrad) + m * m * sum.squares;
-            diagonal_[i] = bracket > tiny ? r * r / bracket : Scalar(0); // −Δt²/a_ii
+            f.wallGrad[i] = sum.wallGrad;
+            f.pressureWallGrad[i] = pressureGrad;
+            f.wallRate[i] = sum.wallRate;
+            const Scalar bracket = (fluidGrad + pressureGrad).dot(fluidGrad + sum.wallGrad) + m * m * sum.squares;
+            f.diagonal[i] = bracket > tiny ? r * r / bracket : Scalar(0); // −Δt²/a_ii
         });
     }
 
-    void addPressureAcceleration(Scene& s, Scalar dt) override {
-        const std::size_t n = s.fluid.size();
-        const auto& v = s.fluid.velocity();
-        const auto& rho = s.fluid.density();
-        auto& a = s.fluid.acceleration();
-        auto& p = s.fluid.pressure();
-        if (!s.gradients.validFor(s.search) || diagonal_.size() != n)
+    void addPressureAcceleration(Scene& s, ParticleSystem& fluid, const Step& step) override {
+        const Scalar dt = step.dt;
+        const std::size_t n = fluid.size();
+        const auto& v = fluid.particles.velocity();
+        const auto& rho = fluid.particles.density();
+        auto& a = fluid.particles.acceleration();
+        auto& p = fluid.particles.pressure();
+        if (!fluid.gradients.validFor(s.listsOf(fluid)))
             throw std::logic_error("iisph: computeDensity must run after each neighbour search (it caches the gradients)");
+        const Factors f = factorsOf(fluid);
         advected_.resize(n);
         q_.resize(n);
         qNext_.resize(n);
@@ -156,35 +156,33 @@ public:
         pressureAcceleration_.resize(n);
         rhoAdvected_.resize(n);
         rhoPredicted_.resize(n);
-        const Scalar m = s.fluid.particleMass(), dt2 = dt * dt, invDt2 = 1 / dt2, w = warmStart_;
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        const Scalar m = fluid.particles.particleMass(), dt2 = dt * dt, invDt2 = 1 / dt2, w = warmStart_;
+        forEachIndex(n, [&](std::size_t i) {
             advected_[i] = v[i] + dt * a[i];
-            p[i] = diagonal_[i] > 0 ? w * p[i] : Scalar(0);
-            q_[i] = p[i] * invRho2_[i];
-        }
+            p[i] = f.diagonal[i] > 0 ? w * p[i] : Scalar(0);
+            q_[i] = p[i] * f.invRho2[i];
+        });
         // the walls with their own pressure (adami: extrapolated from the fluid's) follow the
         // fluid's pressure at every iteration, as in pcisph; within an iteration their force is
         // constant (a_ii leaves out the wall's dependence on p_i)
-        bool ownPressureWalls = false;
-        for (const auto& wall : s.walls) ownPressureWalls = ownPressureWalls || (wall.mass && !wall.pressureMirrored);
+        const bool ownPressureWalls = step.core.boundariesHaveOwnPressure(s);
         const auto pushOfOwnPressureWalls = [&] {
             if (!ownPressureWalls) return;
-            if (s.boundaryModel) s.boundaryModel->updatePressure(s, p);
+            step.core.updateBoundaryPressure(s, fluid, p);
             ownWallPush_.resize(n);
-            forEachPairSum(s, s.fluid.position(), OwnWallPressureTerm{},
+            forEachPairSum(s, fluid, fluid.particles.position(), OwnWallPressureTerm{},
                            [&](std::size_t i, const auto&, const Vec3& sum) { ownWallPush_[i] = sum; });
         };
         pushOfOwnPressureWalls();
         // a_p,i (= Δx_i/Δt²) of the pressure q = p/ρ², given Σ_j (q_i + q_j) ∇W_ij
         const auto setPressureAcceleration = [&](std::size_t i, Scalar qi, const Vec3& push) {
-            Vec3 f = m * push + qi * pressureWallGrad_[i];
-            if (ownPressureWalls) f += ownWallPush_[i];
-            pressureAcceleration_[i] = -f;
+            Vec3 force = m * push + qi * f.pressureWallGrad[i];
+            if (ownPressureWalls) force += ownWallPush_[i];
+            pressureAcceleration_[i] = -force;
         };
-        forEachCachedPairSum(s, AdvectionAndPressureTerm{advected_.data(), q_.data()},
+        forEachCachedPairSum(s, fluid, AdvectionAndPressureTerm{advected_.data(), q_.data()},
                              [&](std::size_t i, const auto& pi, const AdvectionAndPressureTerm::Sum& sum) {
-                                 rhoAdvected_[i] = rho[i] + dt * (m * sum.rate + pi.v.dot(wallGrad_[i]) - wallRate_[i]);
+                                 rhoAdvected_[i] = rho[i] + dt * (m * sum.rate + pi.v.dot(f.wallGrad[i]) - f.wallRate[i]);
                                  setPressureAcceleration(i, pi.q, sum.push);
                              });
 
@@ -193,40 +191,54 @@ public:
         CompressionError err;
         for (;;) {
             // ρ* of the current pressure, and the next pressure (taken if ρ* misses η)
-            forEachCachedPairSum(s, FluidDivergenceTerm{pressureAcceleration_.data()},
+            forEachCachedPairSum(s, fluid, FluidDivergenceTerm{pressureAcceleration_.data()},
                                  [&](std::size_t i, const Vec3& ai, Scalar sum) {
-                                     const Scalar predicted = rhoAdvected_[i] + dt2 * (m * sum + ai.dot(wallGrad_[i]));
+                                     const Scalar predicted = rhoAdvected_[i] + dt2 * (m * sum + ai.dot(f.wallGrad[i]));
                                      rhoPredicted_[i] = predicted;
-                                     const Scalar next = std::max(p[i] + relax * diagonal_[i] * (predicted - rho0), Scalar(0));
+                                     const Scalar next = std::max(p[i] + relax * f.diagonal[i] * (predicted - rho0), Scalar(0));
                                      pNext_[i] = next;
-                                     qNext_[i] = next * invRho2_[i];
+                                     qNext_[i] = next * f.invRho2[i];
                                  });
             err = compressionError(rhoPredicted_, rho0);
             if (controls_.done(iterations, err.max, err.avg)) break;
             p.swap(pNext_);
             q_.swap(qNext_);
             pushOfOwnPressureWalls();
-            forEachCachedPairSum(s, CachedSymmetricGradientTerm{q_.data()},
+            forEachCachedPairSum(s, fluid, CachedSymmetricGradientTerm{q_.data()},
                                  [&](std::size_t i, Scalar qi, const Vec3& push) { setPressureAcceleration(i, qi, push); });
             ++iterations;
         }
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) a[i] += pressureAcceleration_[i];
+        forEachIndex(n, [&](std::size_t i) { a[i] += pressureAcceleration_[i]; });
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
+    }
+
+    // the final pressure's: a_ib = −M_b (q_i + q_b) ∇W_ib, q_b = q_i on a mirroring wall
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        addSymmetricPressureReactions(s, fluid, fluid.particles.position(), q_.data(), r);
     }
 
     bool isIterative() const override { return true; }
     SolverStats lastSolve() const override { return stats_; }
 
 private:
+    static constexpr FieldOptions scratch{false, false, true};
+    // per particle, from the density pass (scratch fields of each fluid): ρ_i²/(a_ii's bracket)
+    // = −Δt²/a_ii (0: no neighbours), 1/ρ_i², Σ_b M_b ∇W_ib, Σ_b (1 + μ_b) M_b ∇W_ib,
+    // Σ_b M_b v_b·∇W_ib
+    struct Factors {
+        Scalar *diagonal, *invRho2, *wallRate;
+        Vec3 *wallGrad, *pressureWallGrad;
+    };
+    static Factors factorsOf(ParticleSystem& fluid) {
+        auto& set = fluid.particles;
+        return {set.findScalar("iisphDiagonal")->data(), set.findScalar("iisphInvRho2")->data(),
+                set.findScalar("iisphWallRate")->data(), set.findVector("iisphWallGrad")->data(),
+                set.findVector("iisphPressureWallGrad")->data()};
+    }
+
     Scalar rho0_, omega_, warmStart_;
     Scalar relaxation_ = 0.5; // omega × jacobiRelaxationScale (LatticePrototype.hpp)
     IterativeSolverControls controls_;
-    // per particle, from the density pass: ρ_i²/(a_ii's bracket) = −Δt²/a_ii (0: no neighbours),
-    // 1/ρ_i², Σ_b M_b ∇W_ib, Σ_b (1 + μ_b) M_b ∇W_ib, Σ_b M_b v_b·∇W_ib
-    std::vector<Scalar> diagonal_, invRho2_;
-    std::vector<Vec3> wallGrad_, pressureWallGrad_;
-    std::vector<Scalar> wallRate_;
     // the solve's: v_adv, q = p/ρ² (and the next), the next p, a_p = Δx/Δt², ρ_adv, ρ*, Σ_b M_b q_b ∇W_ib
     std::vector<Vec3> advected_;
     std::vector<Scalar> q_, qNext_, pNext_;

@@ -91,13 +91,13 @@ struct IsobaricTerm {
     }
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
         Scalar pWall, Pb;
-        if (q.wall.mirrored) {
+        if (q.src.mirrored) {
             pWall = pi.p - pi.rho * g.dot(q.r); // p_i + ρ_i g·(x_b − x_i)
             if (clamp && pWall < 0) pWall = 0;
             Pb = pi.P;
         } else {
-            pWall = q.wall.p[q.j];
-            Pb = pWall / (q.wall.rho[q.j] * q.wall.rho[q.j]);
+            pWall = q.src.p[q.j];
+            Pb = pWall / (q.src.rho[q.j] * q.src.rho[q.j]);
         }
         sum.wallDifference += (q.mass() * (pWall - pi.p) * pi.halfInvRho2) * q.gradW;
         sum.wallSum += (q.mass() * (pi.P + Pb)) * q.gradW;
@@ -114,25 +114,44 @@ public:
     Scalar eosExponent() const override { return eos_.gamma; }
     void initialise(Scene& s) override {
         eos_.initialise(s);
-        towardsWall_ = &s.fluid.addVector("isobaricTowardsWall", {false, false, true});
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid))
+            fluid->particles.addVector("isobaricTowardsWall", {false, false, true}); // scratch: Σ_b M_b ∇W_ib
     }
+    bool integratesDensity() const override { return eos_.continuity; }
 
-    void computeDensity(Scene& s) override { eos_.densityAndPressure(s); }
+    void computeDensity(Scene& s, ParticleSystem& fluid, const Step&) override { eos_.densityAndPressure(s, fluid); }
 
-    void addPressureAcceleration(Scene& s, Scalar) override {
-        const auto& x = s.fluid.position();
-        auto& n = *towardsWall_;
-        forEachPairSum(s, x, TowardsWallTerm{}, [&](std::size_t i, const auto&, const Vec3& sum) { n[i] = sum; });
-        auto& a = s.fluid.acceleration();
-        const IsobaricTerm term{s.fluid.pressure().data(), s.fluid.density().data(), n.data(), s.fluid.particleMass(),
-                                s.physics.gravity, eos_.clampNegative, blend_};
-        forEachPairSum(s, x, term, [&](std::size_t i, const auto&, const IsobaricTerm::Sum& sum) {
+    void addPressureAcceleration(Scene& s, ParticleSystem& fluid, const Step&) override {
+        const auto& x = fluid.particles.position();
+        auto& n = *fluid.particles.findVector("isobaricTowardsWall");
+        forEachPairSum(s, fluid, x, TowardsWallTerm{}, [&](std::size_t i, const auto&, const Vec3& sum) { n[i] = sum; });
+        auto& a = fluid.particles.acceleration();
+        alpha_.resize(x.size());
+        forEachPairSum(s, fluid, x, termOf(s, fluid), [&](std::size_t i, const auto&, const IsobaricTerm::Sum& sum) {
             const Scalar alpha = sum.weight > 0 ? sum.alphaWeighted / sum.weight : Scalar(0);
+            alpha_[i] = alpha;
             a[i] -= sum.fluid + alpha * sum.wallDifference + Scalar(0.5) * (2 - alpha) * sum.wallSum;
         });
     }
 
+    // a_ib = −(ᾱ_i M_b (p_b − p_i)/(2ρ_i²) + (2 − ᾱ_i)/2 M_b (P_i + P_b)) ∇W_ib with each particle's
+    // blend ᾱ_i of the last pass
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        const IsobaricTerm term = termOf(s, fluid);
+        spindrift::addReactions(s, fluid, fluid.particles.position(), term, [&](std::size_t i, const auto& pi, const WallPair& q) {
+            IsobaricTerm::Sum c;
+            term.wall(pi, q, c);
+            return Vec3(-(alpha_[i] * c.wallDifference + Scalar(0.5) * (2 - alpha_[i]) * c.wallSum));
+        }, ForceKind::pressure, r);
+    }
+
 private:
+    IsobaricTerm termOf(const Scene& s, const ParticleSystem& fluid) const {
+        return {fluid.particles.pressure().data(), fluid.particles.density().data(),
+                fluid.particles.findVector("isobaricTowardsWall")->data(), fluid.particles.particleMass(),
+                s.physics.gravity, eos_.clampNegative, blend_};
+    }
+
     static double readDelta(const Dictionary& d) {
         const double delta = d.getOrDefault<double>("delta", 4.5e-3);
         if (!isobaric::Blend::validDelta(delta)) {
@@ -146,7 +165,7 @@ private:
 
     isobaric::Blend blend_;
     TaitEquationOfState eos_;
-    std::vector<Vec3>* towardsWall_ = nullptr; // scratch: Σ_b M_b ∇W_ib
+    std::vector<Scalar> alpha_; // each particle's wall blend ᾱ_i of the last pass
 };
 } // namespace
 

@@ -44,7 +44,6 @@
 //   pressure { type pcisph; clampNegativePressure yes; warmStart 0.5; }
 //   sphSolution: pressure { maxDensityError 0.01; densityErrorNorm maximum;
 //                           minIterations 3; maxIterations 100; }
-#include "BoundaryModel.hpp"
 #include "DensityAndGradientSums.hpp"
 #include "IterativeSolverControls.hpp"
 #include "LatticePrototype.hpp"
@@ -87,25 +86,26 @@ public:
     // ρ_i, and in the same pass every fluid pair's ∇W_ij, kept in the scene's cache: the
     // pressure passes of the iterations (and the viscosity) at these positions stream it
     // instead of looking it up in the kernel table.
-    void computeDensity(Scene& s) override {
-        const auto& x = s.fluid.position();
-        auto& rho = s.fluid.density();
-        const Scalar m = s.fluid.particleMass(), w0 = s.kernel.W0();
+    void computeDensity(Scene& s, ParticleSystem& fluid, const Step&) override {
+        const auto& x = fluid.particles.position();
+        auto& rho = fluid.particles.density();
+        const Scalar m = fluid.particles.particleMass(), w0 = s.kernel.W0();
         rho.resize(x.size());
-        densityAndGradientSums(s, x, [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
+        densityAndGradientSums(s, fluid, x, [&](std::size_t i, const DensityAndGradientSumsTerm::Sum& sum) {
             rho[i] = m * (w0 + sum.w) + sum.wall;
         });
     }
 
-    void addPressureAcceleration(Scene& s, Scalar dt) override {
-        const std::size_t n = s.fluid.size();
-        const auto& x = s.fluid.position();
-        const auto& v = s.fluid.velocity();
-        const auto& rho = s.fluid.density();
-        auto& a = s.fluid.acceleration();
-        auto& p = s.fluid.pressure();
+    void addPressureAcceleration(Scene& s, ParticleSystem& fluid, const Step& step) override {
+        const Scalar dt = step.dt;
+        const std::size_t n = fluid.size();
+        const auto& x = fluid.particles.position();
+        const auto& v = fluid.particles.velocity();
+        const auto& rho = fluid.particles.density();
+        auto& a = fluid.particles.acceleration();
+        auto& p = fluid.particles.pressure();
         if (dt != deltaDt_) {
-            delta_ = Scalar(deltaScale_ * pcisphDelta(prototype_, dt, s.fluid.particleMass(), rho0_));
+            delta_ = Scalar(deltaScale_ * pcisphDelta(prototype_, dt, fluid.particles.particleMass(), rho0_));
             deltaDt_ = dt;
         }
         nonPressure_.resize(n);
@@ -117,23 +117,21 @@ public:
         const Scalar rho0 = rho0_, delta = delta_, w = warmStart_;
         const bool clamp = clampNegative_;
         // walls with a pressure of their own (adami) follow the fluid's at every correction
-        const bool wallsOfTheirOwnPressure =
-            s.boundaryModel && std::any_of(s.walls.begin(), s.walls.end(), [](const WallSystem& w) { return !w.pressureMirrored; });
+        const bool wallsOfTheirOwnPressure = step.core.boundariesHaveOwnPressure(s);
         Scalar* q = pOverRho2_.data();
         // the iteration starts from warmStart × the last step's pressure (the field holds it; at
         // the start, the initial pressure: a hydrostatic start's)
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
+        forEachIndex(n, [&](std::size_t i) {
             nonPressure_[i] = a[i];
             pressureAcc_[i] = Vec3::Zero();
             p[i] *= w;
             const Scalar r = std::max(rho[i], rho0);
             q[i] = p[i] / (r * r);
             predicted_[i] = x[i] + dt * (v[i] + dt * a[i]);
-        }
+        });
         if (w > 0) {
-            if (wallsOfTheirOwnPressure) s.boundaryModel->updatePressure(s, p);
-            symmetricPressureAcceleration(s, x, q, [&](std::size_t i, const Vec3& ap) {
+            if (wallsOfTheirOwnPressure) step.core.updateBoundaryPressure(s, fluid, p);
+            symmetricPressureAcceleration(s, fluid, x, q, [&](std::size_t i, const Vec3& ap) {
                 pressureAcc_[i] = ap;
                 predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + ap));
             });
@@ -142,7 +140,7 @@ public:
         Scalar lastError = std::numeric_limits<Scalar>::infinity();
         CompressionError err;
         for (;;) {
-            summationDensity(s, predicted_, rhoPredicted_);
+            summationDensity(s, fluid, predicted_, rhoPredicted_);
             err = compressionError(rhoPredicted_, rho0);
             if (controls_.done(iterations, err.max, err.avg)) break;
             // an error that rose over the last risingLimit corrections: the iteration diverges
@@ -151,23 +149,26 @@ public:
             rising = e > lastError ? rising + 1 : 0;
             lastError = e;
             if (rising == risingLimit && iterations >= controls_.minIterations) break;
-#pragma omp parallel for schedule(static)
-            for (std::size_t i = 0; i < n; ++i) {
+            forEachIndex(n, [&](std::size_t i) {
                 const Scalar pi = p[i] + delta * (rhoPredicted_[i] - rho0);
                 p[i] = clamp ? std::max(pi, Scalar(0)) : pi;
                 const Scalar r = std::max(rho[i], rho0);
                 q[i] = p[i] / (r * r);
-            }
-            if (wallsOfTheirOwnPressure) s.boundaryModel->updatePressure(s, p);
-            symmetricPressureAcceleration(s, x, q, [&](std::size_t i, const Vec3& ap) {
+            });
+            if (wallsOfTheirOwnPressure) step.core.updateBoundaryPressure(s, fluid, p);
+            symmetricPressureAcceleration(s, fluid, x, q, [&](std::size_t i, const Vec3& ap) {
                 pressureAcc_[i] = ap;
                 predicted_[i] = x[i] + dt * (v[i] + dt * (nonPressure_[i] + ap));
             });
             ++iterations;
         }
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) a[i] = nonPressure_[i] + pressureAcc_[i];
+        forEachIndex(n, [&](std::size_t i) { a[i] = nonPressure_[i] + pressureAcc_[i]; });
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
+    }
+
+    // the final pressure's (at the step's positions)
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        addSymmetricPressureReactions(s, fluid, fluid.particles.position(), pOverRho2_.data(), r);
     }
 
     bool isIterative() const override { return true; }

@@ -20,9 +20,15 @@ public:
     }
     Scalar eosExponent() const override { return eos_.gamma; }
     void initialise(Scene& s) override { eos_.initialise(s); }
+    bool integratesDensity() const override { return eos_.continuity; }
 
-    void computeDensity(Scene& s) override { eos_.densityAndPressure(s); }
-    void addPressureAcceleration(Scene& s, Scalar) override { addSymmetricPressureAcceleration(s, pOverRho2_); }
+    void computeDensity(Scene& s, ParticleSystem& fluid, const Step&) override { eos_.densityAndPressure(s, fluid); }
+    void addPressureAcceleration(Scene& s, ParticleSystem& fluid, const Step&) override {
+        addSymmetricPressureAcceleration(s, fluid, pOverRho2_);
+    }
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        addSymmetricPressureReactions(s, fluid, fluid.particles.position(), pOverRho2_.data(), r);
+    }
 
 private:
     TaitEquationOfState eos_;

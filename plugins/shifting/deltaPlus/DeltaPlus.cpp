@@ -76,7 +76,7 @@ struct ShiftTerm {
     }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const { add(rhoi, m, rho[q.j], q, sum); }
     void wall(Scalar rhoi, const WallPair& q, Sum& sum) const {
-        add(rhoi, q.mass(), q.wall.mirrored ? rhoi : q.wall.rho[q.j], q, sum);
+        add(rhoi, q.mass(), q.src.mirrored ? rhoi : q.src.rho[q.j], q, sum);
     }
 };
 
@@ -111,21 +111,24 @@ public:
     }
 
     void initialise(Scene& s) override {
-        shift_ = &s.fluid.addVector("shiftingVelocity");
-        // the zone of each particle (0 bulk, 1 surface, 2 beside it, −1 not shifted), written
-        // when named in writeFields
-        zone_ = &s.fluid.addScalar("shiftingZone", {false, false});
-        normal_ = &s.fluid.addVector("surfaceNormal", {false, false, true});
+        for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
+            // the zone of each particle (0 bulk, 1 surface, 2 beside it, −1 not shifted), written
+            // when named in writeFields
+            fluid->particles.addScalar("shiftingZone", {false, false});
+            fluid->particles.addVector("surfaceNormal", {false, false, true});
+        }
         const Scalar Wdx = s.kernel.W(s.physics.particleSpacing);
         invWdx_ = Wdx > 0 ? 1 / Wdx : 0;
     }
 
-    void computeShift(Scene& s, Scalar dt) override {
-        auto& shift = *shift_;
-        auto& zone = *zone_;
-        auto& normal = *normal_;
-        const std::size_t count = s.fluid.size();
-        const auto& v = s.fluid.velocity();
+    void computeShift(Scene& s, ParticleSystem& fluid, const Step& step) override {
+        const Scalar dt = step.dt;
+        auto& shift = *fluid.particles.findVector("shiftingVelocity"); // (the core's field)
+        auto& zone = *fluid.particles.findScalar("shiftingZone");
+        auto& normal = *fluid.particles.findVector("surfaceNormal");
+        const std::size_t count = fluid.size();
+        const auto& x = fluid.particles.position();
+        const auto& v = fluid.particles.velocity();
         const Scalar U = maxVelocity_ > 0
                              ? maxVelocity_
                              : Scalar(std::sqrt(parallelMax(count, [&](std::size_t i) { return v[i].squaredNorm(); })));
@@ -134,8 +137,8 @@ public:
         const int d = s.physics.dimension;
         const bool surface = freeSurface_;
         zoneCode_.assign(count, 0);
-        const ShiftTerm term{s.fluid.density().data(), s.fluid.particleMass(), R_, invWdx_, n_, surface};
-        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, Scalar, const ShiftTerm::Sum& sum) {
+        const ShiftTerm term{fluid.particles.density().data(), fluid.particles.particleMass(), R_, invWdx_, n_, surface};
+        forEachPairSum(s, fluid, x, term, [&](std::size_t i, Scalar, const ShiftTerm::Sum& sum) {
             shift[i] = scale * sum.shift;
             if (!surface) return;
             const Scalar lambda = smallestEigenvalue(sum.moment, d);
@@ -156,15 +159,14 @@ public:
         for (signed char z : zoneCode_) anySurface |= z == NearestSurfaceTerm::surfaceZone;
         nearestSurface_.assign(count, none);
         if (anySurface)
-            forEachPairSum(s, s.fluid.position(), NearestSurfaceTerm{zoneCode_.data()},
+            forEachPairSum(s, fluid, x, NearestSurfaceTerm{zoneCode_.data()},
                            [&](std::size_t i, const auto&, const NearestSurfaceTerm::Sum& nearest) {
                                if (zoneCode_[i] == 0 && nearest.r2 < h * h) nearestSurface_[i] = nearest.j;
                            });
         // the surface treatment and the cap
         const Scalar cap = maxShift_ > 0 && dt > 0 ? maxShift_ * dx / dt : std::numeric_limits<Scalar>::infinity();
-        long clipped = 0;
-#pragma omp parallel for schedule(static) reduction(+ : clipped)
-        for (std::size_t i = 0; i < count; ++i) {
+        clipped_.assign(count, 0);
+        forEachIndex(count, [&](std::size_t i) {
             Vec3 dv = shift[i];
             signed char z = zoneCode_[i];
             if (z == splashZone) dv.setZero();
@@ -177,13 +179,16 @@ public:
             const Scalar speed = dv.norm();
             if (speed > cap) {
                 dv *= cap / speed;
-                ++clipped;
+                clipped_[i] = 1;
             }
             shift[i] = dv;
             zone[i] = z;
-        }
-        reportClipping(s, clipped);
+        });
+        reportClipping(s, long(deterministicSum(count, [&](std::size_t i) { return double(clipped_[i]); })));
     }
+
+    // it only shifts (adds no acceleration): no force on a wall or body
+    void addReactions(const Scene&, const ParticleSystem&, const Step&, Reactions&) const override {}
 
 private:
     static constexpr signed char splashZone = -1, besideZone = 2;
@@ -221,10 +226,8 @@ private:
     Scalar maxShift_;
     bool freeSurface_;
     Scalar invWdx_ = 0;
-    std::vector<Vec3>* shift_ = nullptr;
-    std::vector<Scalar>* zone_ = nullptr;
-    std::vector<Vec3>* normal_ = nullptr;
     std::vector<signed char> zoneCode_;
+    std::vector<char> clipped_; // whether the cap clipped a particle's shift (scratch of a call)
     std::vector<Index> nearestSurface_; // beside the surface: the nearest surface particle
     long clippedSteps_ = 0, clippedParticles_ = 0, nextReport_ = 1;
 };

@@ -128,34 +128,41 @@ public:
             m << "    default: backgroundPressure " << backgroundPressure_ << " Pa (rho0 c0^2)";
             log::info(m.str());
         }
-        shift_ = &s.fluid.addVector("shiftingVelocity");
     }
 
-    void computeShift(Scene& s, Scalar dt) override {
+    void computeShift(Scene& s, ParticleSystem& fluid, const Step& step) override {
         if (!checked_) {
-            warnOfFreeSurface(s);
+            warnOfFreeSurface(s, fluid);
             checked_ = true;
         }
-        auto& shift = *shift_;
-        const Scalar rho0 = s.constants.rho0, scale = -dt * backgroundPressure_ / (rho0 * rho0);
-        forEachPairSum(s, s.fluid.position(), ConcentrationGradientTerm{s.fluid.particleMass()},
+        auto& shift = *fluid.particles.findVector("shiftingVelocity"); // (the core's field)
+        const Scalar rho0 = fluid.rho0, scale = -step.dt * backgroundPressure_ / (rho0 * rho0);
+        const auto& x = fluid.particles.position();
+        forEachPairSum(s, fluid, x, ConcentrationGradientTerm{fluid.particles.particleMass()},
                        [&](std::size_t i, const auto&, const Vec3& gradient) { shift[i] = scale * gradient; });
         if (!extraStress_) return;
-        auto& a = s.fluid.acceleration();
-        const ExtraStressTerm term{s.fluid.velocity().data(), shift.data(), s.fluid.density().data(),
-                                   s.fluid.particleMass()};
-        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += sum; });
+        auto& a = fluid.particles.acceleration();
+        forEachPairSum(s, fluid, x, extraStressOf(fluid), [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += sum; });
+    }
+    // the extra stress's boundary part (none without it)
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        if (extraStress_) addScaledReactions(s, fluid, extraStressOf(fluid), Scalar(1), ForceKind::other, r);
     }
 
 private:
+    static ExtraStressTerm extraStressOf(const ParticleSystem& fluid) {
+        return {fluid.particles.velocity().data(), fluid.particles.findVector("shiftingVelocity")->data(),
+                fluid.particles.density().data(), fluid.particles.particleMass()};
+    }
+
     // Warns when fluid particles are on a free surface at the first evaluation: the smallest
     // eigenvalue λ of Marrone's B below 0.75 (≈ 1 inside the fluid, disordered or not, and next
     // to walls; ≈ 0.5 on a flat surface), as deltaPlus detects it.
-    void warnOfFreeSurface(const Scene& s) const {
-        const Scalar rho0 = s.constants.rho0;
+    void warnOfFreeSurface(const Scene& s, const ParticleSystem& fluid) const {
+        const Scalar rho0 = fluid.rho0;
         const int d = s.physics.dimension;
-        std::vector<char> surface(s.fluid.size(), 0);
-        forEachPairSum(s, s.fluid.position(), MomentTerm{s.fluid.particleMass() / rho0, 1 / rho0},
+        std::vector<char> surface(fluid.size(), 0);
+        forEachPairSum(s, fluid, fluid.particles.position(), MomentTerm{fluid.particles.particleMass() / rho0, 1 / rho0},
                        [&](std::size_t i, const auto&, const Mat3& B) {
                            surface[i] = smallestEigenvalue(B, d) < Scalar(0.75);
                        });
@@ -163,7 +170,7 @@ private:
         for (char t : surface) count += t;
         if (count == 0) return;
         std::ostringstream msg;
-        msg << "shifting transportVelocity: " << count << " of " << s.fluid.size() << " fluid particles are on "
+        msg << "shifting transportVelocity: " << count << " of " << fluid.size() << " fluid particles are on "
             << "a free surface (the smallest eigenvalue of their renormalisation matrix is below 0.75): the "
             << "transport-velocity formulation is for internal flows, its background pressure pushes surface "
             << "particles out of the fluid; use 'type deltaPlus;' for flows with a free surface";
@@ -174,7 +181,6 @@ private:
     bool extraStress_;
     SourceLocation where_;
     bool checked_ = false;
-    std::vector<Vec3>* shift_ = nullptr;
 };
 } // namespace
 

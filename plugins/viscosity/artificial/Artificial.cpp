@@ -26,7 +26,7 @@ struct ArtificialViscosityTerm : VelocityDensityTerm {
         sum.fluid += (vr / ((q.r2 + eps) * (pi.rho + rho[q.j]))) * q.gradW;
     }
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
-        const Scalar vr = std::min((pi.v - q.wall.vViscous[q.j]).dot(q.r), Scalar(0));
+        const Scalar vr = std::min((pi.v - q.src.vViscous[q.j]).dot(q.r), Scalar(0));
         sum.wall += (q.mass() * vr / (q.r2 + eps)) * q.gradW;
     }
 };
@@ -47,19 +47,34 @@ public:
                                                   "model has none (incompressible), so give 'soundSpeed'", "soundSpeed");
     }
 
-    void addAcceleration(Scene& s, Scalar) override {
-        const Scalar m = s.fluid.particleMass(), h = s.constants.supportRadius, ach = alpha_ * soundSpeed_ * h;
-        const auto& rho = s.fluid.density();
-        auto& a = s.fluid.acceleration();
+    void addAcceleration(Scene& s, ParticleSystem& fluid, const Step&) override {
+        const Scalar m = fluid.particles.particleMass(), h = s.constants.supportRadius, ach = alpha_ * soundSpeed_ * h;
+        const auto& rho = fluid.particles.density();
+        auto& a = fluid.particles.acceleration();
         // −m Π_ij ∇W_ij = 2 m α c h · v_ij·r_ij / ((r² + ε)(ρ_i + ρ_j)) ∇W_ij; walls with ρ_b = ρ_i
         const Scalar fluidScale = 2 * m * ach, wallScale = wallFactor_ * ach;
-        const ArtificialViscosityTerm term{{s.fluid.velocity().data(), rho.data()}, Scalar(0.01) * h * h};
-        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const auto& sum) {
-            a[i] += fluidScale * sum.fluid + (wallScale / rho[i]) * sum.wall;
-        });
+        forEachPairSum(s, fluid, fluid.particles.position(), termOf(s, fluid),
+                       [&](std::size_t i, const auto&, const auto& sum) {
+                           a[i] += fluidScale * sum.fluid + (wallScale / rho[i]) * sum.wall;
+                       });
+    }
+    // a_ib = (wallFactor α c h / ρ_i) × the term's wall part
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        const Scalar wallScale = wallFactor_ * alpha_ * soundSpeed_ * s.constants.supportRadius;
+        const ArtificialViscosityTerm term = termOf(s, fluid);
+        spindrift::addReactions(s, fluid, fluid.particles.position(), term, [&](std::size_t, const auto& pi, const WallPair& q) {
+            ArtificialViscosityTerm::Sum c;
+            term.wall(pi, q, c);
+            return Vec3((wallScale / pi.rho) * c.wall);
+        }, ForceKind::viscous, r);
     }
 
 private:
+    ArtificialViscosityTerm termOf(const Scene& s, const ParticleSystem& fluid) const {
+        const Scalar h = s.constants.supportRadius;
+        return {{fluid.particles.velocity().data(), fluid.particles.density().data()}, Scalar(0.01) * h * h};
+    }
+
     Scalar alpha_, soundSpeed_, wallFactor_;
     SourceLocation soundSpeedLocation_;
 };

@@ -32,9 +32,9 @@ struct LaminarTerm : VelocityDensityTerm {
         sum += (m * (pi.rho + rho[q.j]) / (pi.rho * rho[q.j]) * q.r2 * q.dampedGradFactor) * (pi.v - v[q.j]);
     }
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
-        const Scalar rhob = q.wall.mirrored ? pi.rho : q.wall.rho[q.j];
+        const Scalar rhob = q.src.mirrored ? pi.rho : q.src.rho[q.j];
         sum += (wallFactor * q.mass() * (pi.rho + rhob) / (pi.rho * rhob) * q.r2 * q.dampedGradFactor) *
-               (pi.v - q.wall.vViscous[q.j]);
+               (pi.v - q.src.vViscous[q.j]);
     }
 };
 
@@ -50,19 +50,22 @@ public:
                              "constant/fluidProperties or 'nu' here)", "nu");
     }
 
-    Scalar timeStepViscosity() const override { return nu_ * correction_; } // the effective ν
+    // the viscous limit of the effective ν
+    double maxTimeStep(const Scene& s) const override { return viscousTimeStepLimit(s, nu_ * correction_); }
 
     void initialise(Scene& s) override {
         const Scalar moment = latticeCorrection_ ? latticeSecondMoment(s) : Scalar(1);
         correction_ = moment > 0 ? 1 / moment : Scalar(1); // 0 without a particle mass (a bare test scene)
     }
 
-    void addAcceleration(Scene& s, Scalar) override {
+    void addAcceleration(Scene& s, ParticleSystem& fluid, const Step&) override {
         const Scalar nu = nu_ * correction_;
-        auto& a = s.fluid.acceleration();
-        const LaminarTerm term{{s.fluid.velocity().data(), s.fluid.density().data()}, s.fluid.particleMass(), wallFactor_,
-                               wallFactor_ != 0};
-        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += nu * sum; });
+        auto& a = fluid.particles.acceleration();
+        forEachPairSum(s, fluid, fluid.particles.position(), termOf(fluid),
+                       [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += nu * sum; });
+    }
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        addScaledReactions(s, fluid, termOf(fluid), nu_ * correction_, ForceKind::viscous, r);
     }
 
     // Λ = Σ_k V0 (−W'(r_k)) r_k x_k²/(r_k² + 0.01h²) over the offsets k ≠ 0 of the initial
@@ -71,7 +74,7 @@ public:
     static Scalar latticeSecondMoment(const Scene& s) {
         const auto& kt = s.kernel;
         const double dx = s.physics.particleSpacing, h = s.constants.supportRadius;
-        const double V0 = s.fluid.particleMass() / s.physics.rho0;
+        const double V0 = s.constants.particleMass / s.constants.rho0;
         const int reach = int(std::ceil(h / dx)), dim = s.physics.dimension;
         double sum = 0;
         for (int k = (dim == 3 ? -reach : 0); k <= (dim == 3 ? reach : 0); ++k)
@@ -85,6 +88,11 @@ public:
     }
 
 private:
+    LaminarTerm termOf(const ParticleSystem& fluid) const {
+        return {{fluid.particles.velocity().data(), fluid.particles.density().data()}, fluid.particles.particleMass(),
+                wallFactor_, wallFactor_ != 0};
+    }
+
     Scalar nu_, wallFactor_;
     bool latticeCorrection_;
     Scalar correction_ = 1;

@@ -57,7 +57,7 @@ struct DampedViscosityTerm {
     // the wall's particles with ρ_b = ρ_i and μ_b = μ_i, moving with the velocity viscous terms see
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
         const Scalar r = std::sqrt(q.r2);
-        const Vec3 vb = q.wall.vViscous[q.j], dv = vb - pi.v;
+        const Vec3 vb = q.src.vViscous[q.j], dv = vb - pi.v;
         const Scalar w = wallFactor * q.mass() * kt.laplacian(r) * gamma(dv, pi.rho * pi.rho, r) * pi.c;
         sum += paper ? Vec3(w * (vb + pi.v)) : Vec3(w * dv);
     }
@@ -74,7 +74,7 @@ public:
         if (!constantMu_ && !(nu_ > 0))
             throw InputError(c.dict.where(), "pereaCordero viscosity needs a viscosity: 'viscosity' (kinematic) in "
                                              "constant/fluidProperties or 'mu' (dynamic) here", "mu");
-        const Scalar h = c.physics.supportRadius;
+        const Scalar h = c.constants.supportRadius;
         if (c.dict.found("dampingScale")) {
             dampingScale_ = c.dict.get<double>("dampingScale");
             if (!(dampingScale_ > 0))
@@ -88,19 +88,27 @@ public:
         }
     }
 
-    Scalar timeStepViscosity() const override { return constantMu_ ? mu_ / rho0_ : nu_; }
+    double maxTimeStep(const Scene& s) const override {
+        return viscousTimeStepLimit(s, constantMu_ ? mu_ / rho0_ : nu_);
+    }
 
     void initialise(Scene& s) override { s.kernel.enableLaplacian(); }
 
-    void addAcceleration(Scene& s, Scalar) override {
-        const Scalar h = s.constants.supportRadius;
-        const DampedViscosityTerm term{s.kernel, s.fluid.velocity().data(), s.fluid.density().data(),
-                                       s.fluid.particleMass(), mu_, nu_, 2 * h * rho0_ * rho0_ / dampingScale_,
-                                       wallFactor_, constantMu_, paperForm_, wallFactor_ != 0};
-        addPairAcceleration(s, term);
+    void addAcceleration(Scene& s, ParticleSystem& fluid, const Step&) override {
+        addPairAcceleration(s, fluid, termOf(s, fluid));
+    }
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+        addScaledReactions(s, fluid, termOf(s, fluid), Scalar(1), ForceKind::viscous, r);
     }
 
 private:
+    DampedViscosityTerm termOf(const Scene& s, const ParticleSystem& fluid) const {
+        const Scalar h = s.constants.supportRadius;
+        return {s.kernel,    fluid.particles.velocity().data(), fluid.particles.density().data(),
+                fluid.particles.particleMass(), mu_, nu_, 2 * h * rho0_ * rho0_ / dampingScale_,
+                wallFactor_, constantMu_, paperForm_, wallFactor_ != 0};
+    }
+
     bool paperForm_, constantMu_;
     Scalar mu_, nu_, rho0_, wallFactor_, dampingScale_ = 0;
 };

@@ -26,7 +26,7 @@ struct XsphTerm : VelocityDensityTerm {
         sum += (2 * m * q.W / (pi.rho + rho[q.j])) * (v[q.j] - pi.v);
     }
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
-        sum += (wallFactor * q.mass() * q.W / pi.rho) * (q.wall.vViscous[q.j] - pi.v);
+        sum += (wallFactor * q.mass() * q.W / pi.rho) * (q.src.vViscous[q.j] - pi.v);
     }
 };
 
@@ -41,16 +41,26 @@ public:
 
     ResultKind result() const override { return ResultKind::velocityChange; }
 
-    void addAcceleration(Scene& s, Scalar dt) override {
+    void addAcceleration(Scene& s, ParticleSystem& fluid, const Step& step) override {
+        const Scalar dt = step.dt;
         if (!(dt > 0) || c_ == 0) return;
         const Scalar scale = c_ / dt;
-        auto& a = s.fluid.acceleration();
-        const XsphTerm term{{s.fluid.velocity().data(), s.fluid.density().data()}, s.fluid.particleMass(),
-                            wallFactor_, wallFactor_ != 0};
-        forEachPairSum(s, s.fluid.position(), term, [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += scale * sum; });
+        auto& a = fluid.particles.acceleration();
+        forEachPairSum(s, fluid, fluid.particles.position(), termOf(fluid),
+                       [&](std::size_t i, const auto&, const Vec3& sum) { a[i] += scale * sum; });
+    }
+    // (its velocity change over the step, as an acceleration)
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step& step, Reactions& r) const override {
+        if (!(step.dt > 0) || c_ == 0) return;
+        addScaledReactions(s, fluid, termOf(fluid), c_ / step.dt, ForceKind::viscous, r);
     }
 
 private:
+    XsphTerm termOf(const ParticleSystem& fluid) const {
+        return {{fluid.particles.velocity().data(), fluid.particles.density().data()}, fluid.particles.particleMass(),
+                wallFactor_, wallFactor_ != 0};
+    }
+
     Scalar c_, wallFactor_;
 };
 } // namespace
