@@ -173,6 +173,7 @@ if [ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null; then
     newCase other 0.01
     "$solver" -case "$work/other" > "$work/other/log" 2>&1 || fail "other user: the first run failed"
     chmod 777 "$work/other"
+    chmod -R a+rwX "$work/other/postProcessing" 2> /dev/null || true # (the function objects' files: not what is tried)
     chmod 000 "$work/other/0.01"
     status=0
     asNobody "$solver" -case "$work/other" > "$work/other/log2" 2> "$work/other/err" || status=$?
