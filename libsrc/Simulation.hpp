@@ -21,7 +21,7 @@ struct RunSummary {
     double wallSeconds = 0;
     std::size_t fluidParticles = 0, wallParticles = 0;
     int writes = 0;
-    double maxDensityError = 0;     // max over the run of max_i |ρ_i − ρ0|/ρ0
+    double maxDensityError = 0;     // max over the run of max_i (ρ_i − ρ0)/ρ0 (the step line's rhoErr max)
     double averageIterations = 0;   // of an iterative pressure solver
 };
 

@@ -62,6 +62,14 @@ class Readers(unittest.TestCase):
         with self.assertRaises(KeyError):
             stats["kineticEnergy"]
 
+    def test_read_dat_reads_the_units_line(self):
+        write(os.path.join(self.case, "postProcessing", "stats", "0", "stats.dat"),
+              "# Time\tmaxSpeed\trhoErrMax\n# [s]\t[m/s]\t[%]\n0 0 0.1\n1 2 0.3\n")
+        stats = sv.read_dat("stats", self.case)
+        self.assertEqual(stats.units, ["s", "m/s", "%"])
+        self.assertEqual(stats.unit("rhoErrMax"), "%")
+        np.testing.assert_array_equal(stats["rhoErrMax"], [0.1, 0.3])
+
     def test_read_dat_of_a_missing_function_object_says_which(self):
         with self.assertRaises(SystemExit) as e:
             sv.read_dat("front", self.case)

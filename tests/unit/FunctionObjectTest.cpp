@@ -29,16 +29,17 @@ struct TestScene {
         dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(text, "controlDict.functions." + name)));
         return ModelRegistry::instance().create<FunctionObject>(*dicts.back(), s.physics, nullptr, dir.path(), name);
     }
-    // rows of postProcessing/<name>/0/<file>.dat
+    // rows of postProcessing/<name>/0/<file>.dat; the header's column names and units lines
     std::vector<std::vector<double>> rows(const std::string& name, std::string* header = nullptr,
-                                          const std::string& file = "") const {
+                                          const std::string& file = "", std::string* units = nullptr) const {
         std::ifstream in(dir.path() / "postProcessing" / name / "0" / ((file.empty() ? name : file) + ".dat"));
         std::vector<std::vector<double>> out;
         std::string line;
         while (std::getline(in, line)) {
             if (line.empty()) continue;
             if (line[0] == '#') {
-                if (header) *header = line;
+                if (header && header->empty()) *header = line;
+                else if (units && units->empty()) *units = line;
                 continue;
             }
             std::istringstream r(line);
@@ -187,17 +188,20 @@ TEST(FieldStats, EnergyMomentumDensityErrorSpacingAndBounds) {
     }
     auto stats = sc.create("stats", "type fieldStats;");
     stats->start(s, 0);
-    std::string header;
-    const auto r = sc.rows("stats", &header);
+    std::string header, units;
+    const auto r = sc.rows("stats", &header, "", &units);
     ASSERT_EQ(r.size(), 1u);
     EXPECT_NE(header.find("kineticEnergy"), std::string::npos);
+    // the units of every column (2D: per metre of depth), the density error in %
+    EXPECT_EQ(units, "# [s]\t[-]\t[%]\t[%]\t[%]\t[J/m]\t[kg/s]\t[kg/s]\t[m/s]\t[m]\t[m]\t[m]\t[m]\t[m]");
     // Time nParticles rhoErrMin rhoErrMax rhoErrAvg kineticEnergy momentumX momentumY maxSpeed
     // minPairDistance xMin xMax yMin yMax
     ASSERT_EQ(r[0].size(), 14u);
     EXPECT_EQ(r[0][1], 100);
-    EXPECT_NEAR(r[0][2], -0.002, 1e-12);
-    EXPECT_NEAR(r[0][3], 0.002, 1e-12);
-    EXPECT_NEAR(r[0][4], 0.0, 1e-12); // i % 5 is balanced over 100 particles
+    // the density error (ρ − ρ0)/ρ0 in %, as the log's step line
+    EXPECT_NEAR(r[0][2], -0.2, 1e-10);
+    EXPECT_NEAR(r[0][3], 0.2, 1e-10);
+    EXPECT_NEAR(r[0][4], 0.0, 1e-10); // i % 5 is balanced over 100 particles
     EXPECT_NEAR(r[0][5], ke, 1e-9 * ke); // written with 10 digits
     EXPECT_NEAR(r[0][6], px, 1e-9 * std::abs(px));
     EXPECT_NEAR(r[0][7], py, 1e-9 * std::abs(py));

@@ -275,7 +275,7 @@ void stillWater(Harness& h, const std::vector<Combination>& combos) {
             if (m > 10 && o.status == "ok") {
                 speedEnd = csvNumber(speed.back(), 4);
                 speedLate = csvNumber(mean(speed, m - m / 10, m), 4);
-                rhoLate = csvNumber(100 * maxOf(rho, m / 2, m), 4);
+                rhoLate = csvNumber(maxOf(rho, m / 2, m), 4); // fieldStats writes %
                 keEnd = csvNumber(ke.back(), 4);
                 // average over the gauges of (late level − level after settling)
                 double d = 0;
@@ -561,7 +561,7 @@ void impact(Harness& h, const std::vector<Combination>& combos) {
             double pMin = std::numeric_limits<double>::infinity();
             for (double v : pair)
                 if (std::isfinite(v)) pMin = std::min(pMin, v);
-            row.insert(row.end(), {csvNumber(100 * maxOf(rho, 0, rho.size()), 4),
+            row.insert(row.end(), {csvNumber(maxOf(rho, 0, rho.size()), 4), // %
                                    contact < ke.size() ? csvNumber(maxOf(ke, contact, ke.size()) / ke0, 4) : "",
                                    csvNumber(ke.back() / ke0, 4), escaped ? "yes" : "no", csvNumber(pMin / dx, 4), o.note});
             h.keepSeries(dir, "impact", name, {"stats"});

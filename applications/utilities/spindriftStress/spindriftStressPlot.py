@@ -63,7 +63,7 @@ def still_water(out):
         if s is None:
             return
         axes[0].semilogy(s.time, s["maxSpeed"], color=colour, lw=1, label=label)
-        axes[1].plot(s.time, 100 * s["rhoErrMax"], color=colour, lw=1)
+        axes[1].plot(s.time, s["rhoErrMax"], color=colour, lw=1)
         level = series(out, "stillWater", r["combination"], "level")
         if level is not None:
             gauges = [i for i, c in enumerate(level.columns) if c.startswith("level")]
@@ -130,7 +130,7 @@ def impact(out):
             return
         ke = s["kineticEnergy"]
         axes[0].plot(s.time, ke / ke[0], color=colour, lw=1, label=label)
-        axes[1].plot(s.time, 100 * s["rhoErrMax"], color=colour, lw=1)
+        axes[1].plot(s.time, s["rhoErrMax"], color=colour, lw=1)
 
     time_series_figure(out, "impact", "(d) block thrown at a wall at 10 m/s",
                        [("t [s]", "kinetic energy / initial [-]", "kinetic energy"),

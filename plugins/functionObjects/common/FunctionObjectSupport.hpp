@@ -14,6 +14,8 @@
 //  * shepard(): Shepard-normalised SPH interpolation at a point,
 //        f(x) = Σ_j f_j V_j W(x − x_j) / Σ_j V_j W(x − x_j),   V_j = m/ρ_j.
 //  * columnLabel(): "p(0.1,0.05,0)"-style column names carrying the sample location.
+//  * lengthUnit(), massUnit(): units of per-unit-depth quantities in 2D (a 2D case's particle
+//    mass is per metre of depth: kg/m).
 #pragma once
 
 #include "Dictionary.hpp"
@@ -95,7 +97,7 @@ public:
 protected:
     explicit SamplingFunctionObject(const ModelContext& c)
         : name_(c.name), dim_(c.physics.dimension), caseDir_(c.caseDirectory), control_(c.dict) {}
-    void open(double startTime, const std::vector<std::string>& columns) {
+    void open(double startTime, const std::vector<PostProcessingColumn>& columns) {
         file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
         control_.start(startTime);
     }
@@ -174,6 +176,9 @@ inline std::string columnLabel(const std::string& name, const Vec3& p, int dimen
     o << ')';
     return o.str();
 }
+
+// "kg" in 3D, "kg/m" (per metre of depth) in 2D; the other extensive units follow from it.
+inline std::string massUnit(int dimension) { return dimension == 3 ? "kg" : "kg/m"; }
 
 inline constexpr double notANumber = std::numeric_limits<double>::quiet_NaN();
 
