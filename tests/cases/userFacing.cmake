@@ -1,0 +1,7 @@
+# What a user sees (issue 34): -postProcess, the progress line, the docs against -listModels,
+# Allclean without a solver, headless screenshots, the bench and stress utilities' options.
+add_test(NAME Solver.ProgressLineAtMostFourRedrawsASecond
+  COMMAND ${CMAKE_CURRENT_LIST_DIR}/progressLine.sh $<TARGET_FILE:spindriftSolver> ${PROJECT_SOURCE_DIR}/tutorials)
+set_tests_properties(Solver.ProgressLineAtMostFourRedrawsASecond
+  PROPERTIES ENVIRONMENT "SPINDRIFT_PLUGIN_PATH=${SPINDRIFT_PLUGIN_BUILD_DIR};OMP_NUM_THREADS=1;SPINDRIFT_DIR=${PROJECT_SOURCE_DIR}"
+  TIMEOUT 300 SKIP_RETURN_CODE 77)
