@@ -608,6 +608,7 @@ int main(int argc, char** argv) {
     if (const auto status = parseCommandLine(argc, argv, options, "spindriftStress", vm)) return *status;
     try {
         log::setQuiet(true);
+        checkThreadsAndTimeout(vm);
         const auto combos = requestedCombinations(vm);
         Settings s;
         s.output = fs::absolute(vm["output"].as<std::string>());
@@ -620,6 +621,19 @@ int main(int argc, char** argv) {
         s.densityBound = vm["densityBound"].as<double>();
         s.resolution = vm["resolution"].as<int>();
         s.stillWaterTime = vm["stillWaterTime"].as<double>();
+        if (s.resolution != 0 && s.resolution < 4)
+            throw std::runtime_error("-resolution " + std::to_string(s.resolution) +
+                                     ": give the particles across the water depth (at least 4), or 0 for the default");
+        if (!(s.stillWaterTime >= 0) || !std::isfinite(s.stillWaterTime)) {
+            std::ostringstream m;
+            m << "-stillWaterTime " << s.stillWaterTime << ": give the physical time in s (positive), or 0 for the default";
+            throw std::runtime_error(m.str());
+        }
+        if (!(s.densityBound > 0) || !std::isfinite(s.densityBound)) {
+            std::ostringstream m;
+            m << "-densityBound " << s.densityBound << ": give a positive fraction (0.25: 25 %)";
+            throw std::runtime_error(m.str());
+        }
         if (vm.count("presets")) {
             std::ifstream in(vm["presets"].as<std::string>());
             if (!in) throw std::runtime_error("cannot read -presets " + vm["presets"].as<std::string>());
