@@ -14,6 +14,7 @@
 #include <boost/program_options.hpp>
 #include <sys/resource.h>
 #include <unistd.h>
+#include <cstdlib>
 #include <ctime>
 #include <iostream>
 #ifdef _OPENMP
@@ -23,7 +24,53 @@
 namespace po = boost::program_options;
 using namespace spindrift;
 
+// The OpenMP runtime's wait policy, chosen before the runtime starts. libgomp reads
+// OMP_WAIT_POLICY and GOMP_SPINCOUNT once, when it is loaded (before main()); by default a thread
+// that reaches the end of a parallel loop first spins up to 300,000 times before it sleeps. On a
+// busy machine (a laptop, a shared server, ctest running tests side by side) those spinning
+// threads take the cores from the threads still working: issue 34 measured a 2-core host with
+// other work running take 35-53 s with every core against 3-7.5 s with one thread. Unless the
+// user chose (OMP_WAIT_POLICY or GOMP_SPINCOUNT set), the spin is bounded to
+// openMPDefaultSpinCount (README, "Threads": as fast as the runtime's default on an idle machine,
+// as a passive wait on a loaded one). The runtime has read its environment by the time any code
+// of ours runs (the executable's .preinit_array runs before libc has even set up the
+// environment), so the process starts itself again with the variable set: execv of
+// /proc/self/exe, the same pid and arguments, about 0.1 s.
 namespace {
+constexpr const char* openMPDefaultSpinCount = "10000";
+constexpr const char* openMPWaitMarker = "SPINDRIFT_OPENMP_WAIT_DEFAULT"; // set for the restarted process only
+bool openMPWaitDefaulted = false; // the spin bound above is in force (the user chose none)
+
+void chooseOpenMPWaitPolicy(char** argv) {
+#ifdef _OPENMP
+    if (std::getenv(openMPWaitMarker)) { // the restarted process
+        ::unsetenv(openMPWaitMarker);
+        const char* spin = std::getenv("GOMP_SPINCOUNT");
+        openMPWaitDefaulted = spin && std::string(spin) == openMPDefaultSpinCount;
+        return;
+    }
+    if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return; // the user's choice
+    if (::setenv("GOMP_SPINCOUNT", openMPDefaultSpinCount, 1) != 0 || ::setenv(openMPWaitMarker, "1", 1) != 0) return;
+    ::execv("/proc/self/exe", argv);
+    // no restart (no /proc): this process keeps the runtime's default, and says so
+    ::unsetenv("GOMP_SPINCOUNT");
+    ::unsetenv(openMPWaitMarker);
+#else
+    (void)argv;
+#endif
+}
+} // namespace
+
+namespace {
+
+// "OMP_WAIT_POLICY passive (environment)", "GOMP_SPINCOUNT 10000 (spindrift's default)", ...
+std::string openMPWaitDescription() {
+    if (openMPWaitDefaulted) return std::string("GOMP_SPINCOUNT ") + openMPDefaultSpinCount + " (spindrift's default)";
+    std::string d;
+    for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
+        if (const char* v = std::getenv(name)) d += (d.empty() ? "" : ", ") + std::string(name) + " " + v;
+    return d.empty() ? "the OpenMP runtime's default" : d + " (environment)";
+}
 
 // The options, each once: what the parser accepts and what -help prints are made from this.
 struct CommandLineOption {
@@ -46,7 +93,9 @@ std::vector<CommandLineOption> commandLineOptions() {
         {"force", "",
          "run a case even when its particle estimate exceeds the memory available (refused otherwise)",
          new po::untyped_value(true)},
-        {"threads", "<N>", "number of OpenMP threads (default: OMP_NUM_THREADS, else every core)",
+        {"threads", "<N>",
+         "number of OpenMP threads, at most the cores this process may use (default: OMP_NUM_THREADS, else "
+         "every core)",
          po::value<int>()},
         {"listModels", "[kind]", "list the available models, or those of one kind: " + kinds,
          po::value<std::string>()->implicit_value("")},
@@ -97,7 +146,8 @@ void printVersion() {
               << "\nCompiler   : " << build::compiler << "\nFlags      : " << build::flags << "\nOpenMP     : ";
 #ifdef _OPENMP
     const int threads = omp_get_max_threads();
-    std::cout << "on (" << threads << (threads == 1 ? " thread" : " threads") << " here by default)";
+    std::cout << "on (" << threads << (threads == 1 ? " thread" : " threads") << " here by default; wait: "
+              << openMPWaitDescription() << ")";
 #else
     std::cout << "off";
 #endif
@@ -153,7 +203,7 @@ std::string startedLine() {
     return std::string(date) + " on " + host + ", pid " + std::to_string(getpid());
 }
 
-void banner(const Simulation& sim, int threads) {
+void banner(const Simulation& sim, const std::string& threads) {
     const auto& s = const_cast<Simulation&>(sim).scene();
     log::Line() << "Spindrift : " << build::version << (*build::gitDescribe ? std::string(" (git ") + build::gitDescribe + ")" : "")
                 << ", " << build::precision << ", " << build::type;
@@ -172,9 +222,40 @@ void banner(const Simulation& sim, int threads) {
     log::Line() << "Plugins   :" << libs;
 }
 
+// Sets the OpenMP thread count (-threads N, else OMP_NUM_THREADS, else every core) and returns it
+// for the banner, with the wait policy. More threads than the cores this process may use
+// (omp_get_num_procs: the CPUs of its affinity mask, as nproc counts them) only wait for each
+// other, and thousands of them fail in the runtime: -threads N beyond the cores is refused,
+// OMP_NUM_THREADS beyond them is capped with a warning.
+std::string chooseThreadCount(const po::variables_map& vm) {
+#ifdef _OPENMP
+    const int cores = omp_get_num_procs();
+    if (vm.count("threads")) {
+        const int n = vm["threads"].as<int>();
+        if (n < 1) throw std::runtime_error("-threads must be at least 1");
+        if (n > cores)
+            throw std::runtime_error("-threads " + std::to_string(n) + ": this process may use " +
+                                     std::to_string(cores) + (cores == 1 ? " core" : " cores") +
+                                     "; more threads only wait for each other: use -threads " +
+                                     std::to_string(cores) + " or fewer");
+        omp_set_num_threads(n);
+    } else if (omp_get_max_threads() > cores) {
+        log::warning("OMP_NUM_THREADS asks for " + std::to_string(omp_get_max_threads()) + " threads; this process may use " +
+                     std::to_string(cores) + (cores == 1 ? " core" : " cores") + ": running " +
+                     std::to_string(cores) + (cores == 1 ? " thread" : " threads"));
+        omp_set_num_threads(cores);
+    }
+    return std::to_string(omp_get_max_threads()) + " (OpenMP wait: " + openMPWaitDescription() + ")";
+#else
+    (void)vm;
+    return "1 (built without OpenMP)";
+#endif
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+    chooseOpenMPWaitPolicy(argv); // first: it may start the process again
     log::installFatalSignalHandlers();
     const std::vector<CommandLineOption> optionTable = commandLineOptions();
     po::options_description options;
@@ -218,14 +299,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         stopAtOnceOnSignalsDuringSetUp();
-        int threads = 1;
-#ifdef _OPENMP
-        if (vm.count("threads")) {
-            if (vm["threads"].as<int>() < 1) throw std::runtime_error("-threads must be at least 1");
-            omp_set_num_threads(vm["threads"].as<int>());
-        }
-        threads = omp_get_max_threads();
-#endif
+        const std::string threads = chooseThreadCount(vm);
         Simulation sim(vm["case"].as<std::string>(), vm.count("force") > 0);
         banner(sim, threads);
         if (vm.count("dryRun")) {
