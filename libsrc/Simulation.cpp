@@ -171,7 +171,6 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     if (!restarted_) scene_.time = time_->startTime();
     time_->begin(scene_.time, lastDeltaT_);
     if (restarted_) integrator_->restarted(scene_);
-    for (auto& f : functions_) f->start(scene_, scene_.time);
     if (pressure_->isIterative())
         solverPerformance_ = std::make_unique<PostProcessingFile>(
             case_.dir, "solverPerformance", scene_.time,
@@ -702,9 +701,17 @@ void Simulation::write() {
 }
 
 void Simulation::writeInitialState() {
-    writer_->rebuildCollection();
     evaluate(scene_.time, Scalar(time_->initialDeltaT()));
+    startFunctionObjects();
+    writer_->rebuildCollection();
     write();
+}
+
+void Simulation::startFunctionObjects() {
+    // After the start time's evaluation and before its write: their first rows describe what the
+    // time directory holds (-postProcess reproduces them), and an entry they refuse (a probed
+    // field the case does not have) stops the run before anything is written.
+    for (auto& f : functions_) f->start(scene_, scene_.time);
 }
 
 namespace {
@@ -803,11 +810,10 @@ RunSummary Simulation::run() {
         log::setFatalSignalContext(text);
     };
 
+    if (!restarted_) evaluate(s.time, Scalar(time_->initialDeltaT()));
+    startFunctionObjects(); // before anything is written, on the state the start time's directory holds
     writer_->rebuildCollection();
-    if (!restarted_) {
-        evaluate(s.time, Scalar(time_->initialDeltaT()));
-        writeAndLog();
-    }
+    if (!restarted_) writeAndLog();
     setFatalSignalContext();
     {
         double vMax0 = 0;

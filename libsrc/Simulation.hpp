@@ -52,6 +52,12 @@ public:
     const TimeControl& timeControl() const { return *time_; }
     std::string schemesSummary() const;
 
+    // -postProcess (PostProcess.cpp): the state written in the time directory 'timeName' of time
+    // 'time' — the fluid's fields read from its fluid.vtp, the exact time and step from its
+    // uniform/time (when present), the moving walls placed at that time and the neighbour search
+    // built on it. Throws std::runtime_error when the time cannot be read.
+    void loadWrittenTime(double time, const std::string& timeName);
+
     // One force evaluation at the current state, the walls placed at 'time', with step size dt
     // (public for tests).
     void evaluate(double time, Scalar dt);
@@ -59,6 +65,7 @@ public:
 
 private:
     void readRunControls(const Dictionary& control);
+    void startFunctionObjects();
     void rereadControlDictIfChanged();
     void buildParticles();
     // Refuses, before anything is allocated, a geometry whose particles would not fit in the

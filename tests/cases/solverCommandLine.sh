@@ -12,7 +12,7 @@ help=$("$solver" -help)
 echo "$help"
 grep -q -- "^  -case <dir> " <<< "$help" || fail "-help does not describe -case <dir>"
 if grep -q -- "^  --" <<< "$help"; then fail "-help describes GNU-style --options"; fi
-for o in dryRun force threads listModels version help; do
+for o in dryRun force threads postProcess func time listModels version help; do
     grep -q -- "^  -$o\b" <<< "$help" || fail "-help does not describe -$o"
 done
 [ "$("$solver" --help)" = "$help" ] || fail "--help differs from -help"

@@ -1,6 +1,7 @@
 // spindrift — the SPH solver application.
 //
 //   spindrift [-case DIR] [-dryRun] [-force] [-threads N] [-listModels [kind]] [-version] [-help]
+//   spindrift -postProcess [-func NAME] [-time RANGE] [-case DIR]
 //
 // Options are spelt as OpenFOAM's (-case DIR); the GNU spellings (--case DIR, --case=DIR) are
 // aliases. A misspelt option is refused with the closest one ("did you mean '-dryRun'?"),
@@ -9,6 +10,7 @@
 #include "Error.hpp"
 #include "Log.hpp"
 #include "ModelRegistry.hpp"
+#include "PostProcess.hpp"
 #include "Simulation.hpp"
 
 #include <boost/program_options.hpp>
@@ -99,6 +101,14 @@ std::vector<CommandLineOption> commandLineOptions() {
          po::value<int>()},
         {"listModels", "[kind]", "list the available models, or those of one kind: " + kinds,
          po::value<std::string>()->implicit_value("")},
+        {"postProcess", "",
+         "run the case's function objects (controlDict 'functions') over its written times without solving, "
+         "writing postProcessing/<name>/<first time>/ as a run does",
+         new po::untyped_value(true)},
+        {"func", "<name>", "with -postProcess: only the function object of that name", po::value<std::string>()},
+        {"time", "<range>",
+         "with -postProcess: the written times to process, e.g. 0.5, 0.1:0.3, :0.2, 0.4:, 0,0.5 (default: all)",
+         po::value<std::string>()},
         {"version", "", "print the version and the build (precision, type, flags) and exit",
          new po::untyped_value(true)},
         {"help", "", "print this help and exit", new po::untyped_value(true)},
@@ -298,10 +308,22 @@ int main(int argc, char** argv) {
             listModels(vm["listModels"].as<std::string>());
             return 0;
         }
+        const bool postProcessing = vm.count("postProcess") > 0;
+        for (const char* o : {"func", "time"})
+            if (vm.count(o) && !postProcessing)
+                throw std::runtime_error(std::string("-") + o + " selects what -postProcess runs: use it with -postProcess");
+        if (postProcessing && vm.count("dryRun")) throw std::runtime_error("-postProcess and -dryRun: give one of them");
         stopAtOnceOnSignalsDuringSetUp();
         const std::string threads = chooseThreadCount(vm);
         Simulation sim(vm["case"].as<std::string>(), vm.count("force") > 0);
         banner(sim, threads);
+        if (postProcessing) {
+            PostProcessRequest request;
+            if (vm.count("func")) request.function = vm["func"].as<std::string>();
+            if (vm.count("time")) request.times = vm["time"].as<std::string>();
+            postProcess(sim, request);
+            return 0;
+        }
         if (vm.count("dryRun")) {
             sim.writeInitialState();
             log::info("Dry run: wrote time " + CaseWriter::timeName(sim.scene().time) + "; End");

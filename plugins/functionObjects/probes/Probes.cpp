@@ -22,7 +22,8 @@
 //
 // Output postProcessing/<name>/<startTime>/<name>.dat (units in the header's second line: Pa,
 // m/s, kg/m^3, ...; "?" for a model's internal field): one row per sample, columns field-major
-// ("p(0.1,0.045)", ..., "Ux(0.1,0.045)", "Uy(...)", ..., "rho(...)").
+// ("p(0.1,0.045)", ..., "Ux(0.1,0.045)", "Uy(...)", ..., "rho(...)"); a row is written at the
+// start time too.
 #include "FunctionObjectSupport.hpp"
 #include "Log.hpp"
 #include "Plugin.hpp"
@@ -76,6 +77,7 @@ public:
             }
         open(startTime, columns);
         warnOfLocationsOutside(s);
+        sample(s, false);
     }
 
 private:
