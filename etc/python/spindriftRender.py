@@ -4,7 +4,7 @@
 Run it with ParaView's pvbatch (its python):
 
     spindriftRender -case run/damBreak2D -times 0.1,0.2                          # the wrapper picks:
-    xvfb-run -a pvbatch spindriftRender.py -- -case run/damBreak2D -times 0.1,0.2   # Debian's ParaView (X only)
+    xvfb-run -a -s -noreset pvbatch spindriftRender.py -- -case run/damBreak2D   # Debian's ParaView (X only)
     pvbatch --force-offscreen-rendering spindriftRender.py -- -case ...            # ParaView built with EGL/OSMesa
 
 (the "--" keeps pvbatch from reading the script's options as its own)
