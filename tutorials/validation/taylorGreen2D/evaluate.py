@@ -80,8 +80,9 @@ def main():
     x, u = sv.read_vtp(os.path.join(d_last, "fluid.vtp"))
     s = np.sqrt(u[:, 0] ** 2 + u[:, 1] ** 2)
     sc = c.scatter(x[:, 0], x[:, 1], c=s, s=5, cmap="viridis", rasterized=True)
-    # arrows: the particles' mean velocity in 16 x 16 cells (one arrow per particle would hide them)
-    cells = 16
+    # arrows: the particles' mean velocity in cells of about 16 particles, at most 16 x 16 of them
+    # (one arrow per particle would hide the particles)
+    cells = max(4, min(16, int(np.sqrt(len(x)) / 4)))
     lo, hi = x[:, :2].min(axis=0), x[:, :2].max(axis=0)
     k = np.clip(((x[:, :2] - lo) / (hi - lo + 1e-12) * cells).astype(int), 0, cells - 1)
     cell = k[:, 0] * cells + k[:, 1]
@@ -93,7 +94,7 @@ def main():
     c.set_aspect("equal")
     c.set_xlabel("x [m]")
     c.set_ylabel("y [m]")
-    c.set_title("particles at t = %g s (colour: speed, arrows: mean velocity of %d x %d cells); L2 error %.3f"
+    c.set_title("t = %g s: particles (colour: speed), arrows: mean velocity\nof %d x %d cells; L2 error %.3f"
                 % (t_last, cells, cells, errors[-1][1]), fontsize=10)
     fig.colorbar(sc, ax=c, label="particle speed |u| [m/s]")
     fig.tight_layout()
