@@ -84,18 +84,24 @@ grep -q "^--> Warning: OMP_NUM_THREADS asks for 100000 threads; this process may
 grep -q "^Threads   : $cores (OpenMP wait: " <<< "$out" || fail "OMP_NUM_THREADS=100000 not capped: $(grep Threads <<< "$out")"
 rm -rf "$work/case/0"
 # the OpenMP wait: bounded by default (the runtime, OMP_DISPLAY_ENV, says what it runs with), the
-# user's choice kept
-if "$solver" -version | grep -q "^OpenMP *: on"; then
+# user's choice kept; a run on one thread (OMP_NUM_THREADS=1, as here) is left alone
+if "$solver" -version | grep -q "^OpenMP *: on" && [ "$cores" -gt 1 ]; then
+    unset OMP_NUM_THREADS
     [ "$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT bash -c 'OMP_DISPLAY_ENV=verbose "$1" -version 2>&1 >/dev/null' _ "$solver" \
-         | grep "GOMP_SPINCOUNT =" | tail -n 1)" = "  GOMP_SPINCOUNT = '10000'" ] || fail "the default wait is not GOMP_SPINCOUNT 10000"
-    env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$solver" -version | grep -q "wait: GOMP_SPINCOUNT 10000 (spindrift's default)" \
+         | grep "GOMP_SPINCOUNT =" | tail -n 1)" = "  GOMP_SPINCOUNT = '1000'" ] || fail "the default wait is not GOMP_SPINCOUNT 1000"
+    env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$solver" -version | grep -q "wait: GOMP_SPINCOUNT 1000 (spindrift's default)" \
         || fail "-version does not name the default wait"
-    [ "$(OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose "$solver" -version 2>&1 >/dev/null | grep -c "GOMP_SPINCOUNT = '10000'")" = 0 ] \
+    [ "$(OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose "$solver" -version 2>&1 >/dev/null | grep -c "GOMP_SPINCOUNT = '1000'")" = 0 ] \
         || fail "OMP_WAIT_POLICY=active was overridden"
     OMP_WAIT_POLICY=active "$solver" -version | grep -q "wait: OMP_WAIT_POLICY active (environment)" \
         || fail "-version does not name the user's OMP_WAIT_POLICY"
     GOMP_SPINCOUNT=500 "$solver" -version | grep -q "wait: GOMP_SPINCOUNT 500 (environment)" || fail "GOMP_SPINCOUNT=500 not kept"
-    echo "ok OpenMP wait: GOMP_SPINCOUNT 10000 by default, OMP_WAIT_POLICY / GOMP_SPINCOUNT of the user kept"
+    for one in "env OMP_NUM_THREADS=1 $solver -version" "$solver -threads 1 -version"; do
+        [ "$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose $one 2>&1 >/dev/null | grep -c "GOMP_SPINCOUNT =")" = 1 ] \
+            || fail "'$one' started itself again (one thread never waits)"
+    done
+    export OMP_NUM_THREADS=1
+    echo "ok OpenMP wait: GOMP_SPINCOUNT 1000 by default, OMP_WAIT_POLICY / GOMP_SPINCOUNT of the user kept"
 fi
 # the GNU spellings still work
 rm -rf "$work/case/0"
