@@ -75,8 +75,33 @@ set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 # (CPack adds postinst/postrm running ldconfig, for lib/libspindrift.so)
-# what find_package(Spindrift) needs to build plugins
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "cmake, g++, libeigen3-dev, libboost-dev")
+# Depends: what the binaries link, read by dpkg-shlibdeps. The solver reads and writes .vtp with
+# ParaView's VTK (libvtk*-pv5.11, built against paraview-dev), and Debian 12 ships those libraries
+# in the package `paraview` itself: it is the one package that holds them (libvtk9.1 is another
+# VTK, and libvtk9-dev conflicts with python3-paraview, see README), so it stays a dependency.
+# Recommends: python3-paraview (pvpython, pvbatch's python: the validation and tutorial scripts,
+# etc/python/spindriftRender.py), python3-matplotlib (the plots of the validation cases and the
+# bench and stress utilities), bash-completion (loads share/bash-completion/completions/spindrift),
+# and what find_package(Spindrift) needs to build plugins. Suggests: xvfb (rendering without a
+# display where pvbatch's offscreen rendering is not enough).
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
+  "python3-paraview, python3-matplotlib, bash-completion, cmake, g++, libeigen3-dev, libboost-dev")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "xvfb")
+# prerm: python caches (__pycache__) that a script run as root left under /usr/share/spindrift
+# (etc/RunFunctions keeps the tutorials' scripts from writing them; python run by hand may),
+# removed before the package's files, so that `apt remove` leaves no directory behind
+file(CONFIGURE OUTPUT ${PROJECT_BINARY_DIR}/debian/prerm CONTENT [[#!/bin/sh
+set -e
+# python caches a script run as root left in the package's directories (not files of the package)
+if [ -d "${DPKG_ROOT:-}/usr/share/spindrift" ]; then
+    find "${DPKG_ROOT:-}/usr/share/spindrift" -depth -type d -name __pycache__ -exec rm -rf {} +
+fi
+exit 0
+]] @ONLY)
+file(CHMOD ${PROJECT_BINARY_DIR}/debian/prerm PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE
+  GROUP_READ GROUP_EXECUTE WORLD_READ WORLD_EXECUTE)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_BINARY_DIR}/debian/prerm)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION TRUE)
 find_program(DPKG_SHLIBDEPS dpkg-shlibdeps)
 if(DPKG_SHLIBDEPS)
   set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)

@@ -25,14 +25,23 @@ public:
     virtual void end(const Scene&) {}
 };
 
-// postProcessing/<name>/<startTimeName>/<fileName>: a '#'-header line then one row per call.
+// A column of a postProcessing table: its name and its unit as the header shows it ("Pa", "m/s",
+// "%", "-" for a count or a ratio).
+struct PostProcessingColumn {
+    std::string name, unit;
+};
+
+// postProcessing/<name>/<startTimeName>/<fileName>: two '#'-header lines, the columns' names and
+// their units (the first column is Time, in s), then one row per call:
+//     # Time  nParticles  rhoErrMax ...
+//     # [s]   [-]         [%] ...
 // Rows are flushed so a crashed run keeps them; restarting appends to a new folder named after
 // the restart time, as OpenFOAM does.
 class PostProcessingFile {
 public:
     PostProcessingFile() = default;
     PostProcessingFile(const std::filesystem::path& caseDir, const std::string& name, double startTime,
-                       const std::vector<std::string>& columns, const std::string& fileName = "");
+                       const std::vector<PostProcessingColumn>& columns, const std::string& fileName = "");
     void writeRow(double time, const std::vector<double>& values);
     const std::filesystem::path& path() const { return path_; }
     bool isOpen() const { return out_.is_open(); }

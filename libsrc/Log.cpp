@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <iostream>
@@ -16,6 +17,10 @@ std::mutex mutex;
 bool quiet = false;
 std::string progressText;               // shown below the log lines until clearProgress()
 std::atomic<bool> progressShown{false}; // atomic: a fatal-signal handler erases it
+// progress(): at most one redraw per interval (a run of short steps would otherwise redraw it
+// thousands of times a second: megabytes over ssh); log lines still redraw it at once
+constexpr auto progressRedrawInterval = std::chrono::milliseconds(250);
+std::chrono::steady_clock::time_point lastProgressDraw;
 
 void clearProgressLocked() {
     if (progressShown.load()) {
@@ -100,6 +105,9 @@ void progress(const std::string& line) {
     if (quiet || !stdoutIsTerminal()) return;
     std::lock_guard lock(mutex);
     progressText = line;
+    const auto now = std::chrono::steady_clock::now();
+    if (progressShown.load() && now - lastProgressDraw < progressRedrawInterval) return; // drawn by the next one
+    lastProgressDraw = now;
     std::cout << "\r\033[K" << line << std::flush;
     progressShown.store(true);
 }

@@ -19,7 +19,9 @@ namespace spindrift::log {
 
 void info(const std::string& line);
 void warning(const std::string& line);
-// Progress line (terminal only; no-op otherwise). Cleared by clearProgress().
+// Progress line (terminal only; no-op otherwise). Cleared by clearProgress(). Redrawn at most 4
+// times a second (a call within 250 ms of the last redraw only keeps its text, which the next
+// redraw or log line shows).
 void progress(const std::string& line);
 void clearProgress();
 bool stdoutIsTerminal();

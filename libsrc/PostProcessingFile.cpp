@@ -4,12 +4,15 @@
 
 #include <cerrno>
 #include <iomanip>
+#include <stdexcept>
 
 namespace spindrift {
 
 PostProcessingFile::PostProcessingFile(const std::filesystem::path& caseDir, const std::string& name,
-                                       double startTime, const std::vector<std::string>& columns,
+                                       double startTime, const std::vector<PostProcessingColumn>& columns,
                                        const std::string& fileName) {
+    for (const auto& c : columns)
+        if (c.unit.empty()) throw std::logic_error("postProcessing/" + name + ": column '" + c.name + "' has no unit");
     const auto dir = caseDir / "postProcessing" / name / CaseWriter::timeName(startTime);
     std::filesystem::create_directories(dir);
     path_ = dir / ((fileName.empty() ? name : fileName) + ".dat");
@@ -17,7 +20,9 @@ PostProcessingFile::PostProcessingFile(const std::filesystem::path& caseDir, con
     out_.open(path_, std::ios::trunc);
     if (!out_) throw std::runtime_error(describeWriteFailure(path_.string(), errno));
     out_ << "# Time";
-    for (const auto& c : columns) out_ << '\t' << c;
+    for (const auto& c : columns) out_ << '\t' << c.name;
+    out_ << "\n# [s]";
+    for (const auto& c : columns) out_ << "\t[" << c.unit << ']';
     out_ << '\n' << std::flush;
     if (!out_) throw std::runtime_error(describeWriteFailure(path_.string(), errno));
 }

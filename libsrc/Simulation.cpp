@@ -35,23 +35,29 @@ std::string formatDuration(double s) {
 }
 
 struct DensityError {
-    double max = 0, avg = 0;
+    double min = 0, max = 0, avg = 0;
 };
 
-// Compression error (ρ − ρ0)/ρ0 where positive, over every fluid system; the density deficit at
-// a free surface is not an error of the pressure solver.
+// The density error e_i = (ρ_i − ρ0)/ρ0, signed (> 0 compressed; a free surface with a summed
+// density shows as a negative minimum): its min, max and average over the fluid systems. One definition
+// for the step line's "rhoErr min/max/avg" (in %), fieldStats' rhoErrMin/Max/Avg columns (in %)
+// and the End line's "max density error" (the largest max of the run).
 DensityError densityError(const Scene& s) {
     DensityError e;
     std::size_t count = 0;
+    e.min = std::numeric_limits<double>::infinity();
+    e.max = -e.min;
     for (const ParticleSystem* f : s.ofRole(SystemRole::fluid)) {
         const auto& rho = f->particles.density();
         const double rho0 = f->rho0;
         const std::size_t n = f->ownedSize();
-        e.max = std::max(e.max, parallelMax(n, [&](std::size_t i) { return std::max(0.0, (rho[i] - rho0) / rho0); }));
-        e.avg += deterministicSum(n, [&](std::size_t i) { return std::max(0.0, (rho[i] - rho0) / rho0); });
+        e.min = std::min(e.min, parallelMin(n, [&](std::size_t i) { return (rho[i] - rho0) / rho0; }));
+        e.max = std::max(e.max, parallelMax(n, [&](std::size_t i) { return (rho[i] - rho0) / rho0; }));
+        e.avg += deterministicSum(n, [&](std::size_t i) { return (rho[i] - rho0) / rho0; });
         count += n;
     }
-    if (count > 0) e.avg /= double(count);
+    if (count == 0) return {};
+    e.avg /= double(count);
     return e;
 }
 
@@ -181,11 +187,11 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     time_->begin(scene_.time, lastDeltaT_);
     if (restarted_) integrator_->restarted(scene_);
     for (auto& f : functions_) f->require(scene_);
-    for (auto& f : functions_) f->start(scene_, scene_.time);
     if (pressure_->isIterative())
         solverPerformance_ = std::make_unique<PostProcessingFile>(
             case_.dir, "solverPerformance", scene_.time,
-            std::vector<std::string>{"iterations", "converged", "maxDensityError", "avgDensityError"});
+            std::vector<PostProcessingColumn>{
+                {"iterations", "-"}, {"converged", "-"}, {"maxDensityError", "%"}, {"avgDensityError", "%"}});
 }
 
 Simulation::~Simulation() = default;
@@ -1235,9 +1241,17 @@ void Simulation::takeCaseTimes() {
 }
 
 void Simulation::writeInitialState() {
-    takeCaseTimes();
     evaluate(scene_.time, Scalar(time_->initialDeltaT()));
+    startFunctionObjects();
+    takeCaseTimes();
     write();
+}
+
+void Simulation::startFunctionObjects() {
+    // After the start time's evaluation and before its write: their first rows describe what the
+    // time directory holds (-postProcess reproduces them), and an entry they refuse (a probed
+    // field the case does not have) stops the run before anything is written.
+    for (auto& f : functions_) f->start(scene_, scene_.time);
 }
 
 namespace {
@@ -1337,11 +1351,10 @@ RunSummary Simulation::run() {
         log::setFatalSignalContext(text);
     };
 
+    if (!restarted_) evaluate(s.time, Scalar(time_->initialDeltaT()));
+    startFunctionObjects(); // before anything is written, on the state the start time's directory holds
     takeCaseTimes();
-    if (!restarted_) {
-        evaluate(s.time, Scalar(time_->initialDeltaT()));
-        writeAndLog();
-    }
+    if (!restarted_) writeAndLog();
     setFatalSignalContext();
     {
         double vMax0 = 0;
@@ -1491,7 +1504,7 @@ RunSummary Simulation::run() {
             iterations += st.iterations;
             ++iterativeSteps;
             solverPerformance_->writeRow(s.time, {double(st.iterations), st.converged ? 1.0 : 0.0,
-                                                  st.maxDensityError, st.avgDensityError});
+                                                  100 * st.maxDensityError, 100 * st.avgDensityError});
         }
         const int signal = pendingSignal.load();
         typicalDeltaT = typicalDeltaT > 0 ? 0.9 * typicalDeltaT + 0.1 * dt : dt;
@@ -1507,8 +1520,8 @@ RunSummary Simulation::run() {
             }
             std::ostringstream line;
             line << "Time = " << std::setprecision(6) << s.time << "  step " << s.step << "  deltaT "
-                 << std::setprecision(3) << dt << "  maxU " << vMax << "  rhoErr max " << 100 * err.max
-                 << "% avg " << 100 * err.avg << "%";
+                 << std::setprecision(3) << dt << "  maxU " << vMax << "  rhoErr min " << 100 * err.min << "% max "
+                 << 100 * err.max << "% avg " << 100 * err.avg << "%";
             if (pressure_->isIterative())
                 line << "  iterations " << st.iterations
                      << (st.converged ? "" : " (not converged: maxIterations reached)");

@@ -23,7 +23,7 @@ struct RunSummary {
     double wallSeconds = 0;
     std::size_t fluidParticles = 0, wallParticles = 0;
     int writes = 0;
-    double maxDensityError = 0;     // max over the run of max_i |ρ_i − ρ0|/ρ0
+    double maxDensityError = 0;     // max over the run of max_i (ρ_i − ρ0)/ρ0 (the step line's rhoErr max)
     double averageIterations = 0;   // of an iterative pressure solver
 };
 
@@ -78,9 +78,17 @@ public:
     const TimeControl& timeControl() const { return *time_; }
     std::string schemesSummary() const;
 
+    // -postProcess (PostProcess.cpp): the state written in the time directory 'timeName' of time
+    // 'time' — the fluid's fields read from its fluid.vtp, the exact time and step from its
+    // uniform/time (when present), the moving walls placed at that time, a passive system's particles and the bodies'
+    // states read back, and the neighbour search built on it. Throws std::runtime_error when the time cannot be read.
+    void loadWrittenTime(double time, const std::string& timeName);
+
     // One force evaluation at the current state, the moving boundaries placed at 'time', with
     // step size dt (public for tests).
     void evaluate(double time, Scalar dt);
+    // The step size of the last step (of the time restarted from or post-processed).
+    double lastDeltaT() const { return lastDeltaT_; }
     // The core's services to the models (Step.hpp).
     const StepServices& services() const;
     double stableDeltaT() const;
@@ -89,6 +97,7 @@ public:
 
 private:
     void readRunControls(const Dictionary& control);
+    void startFunctionObjects();
     void rereadControlDictIfChanged();
     void buildParticles();
     // Refuses, before anything is allocated, a geometry whose particles would not fit in the

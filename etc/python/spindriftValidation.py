@@ -35,11 +35,16 @@ FIGURE_DEFINITIONS = {
 
 
 class Table:
-    """Columns of numbers with named columns, the first being Time (postProcessing layout)."""
+    """Columns of numbers with named columns, the first being Time (postProcessing layout), and
+    their units ("s", "Pa", "%", ...; None for a file without the units line)."""
 
-    def __init__(self, columns, data):
+    def __init__(self, columns, data, units=None):
         self.columns = columns
         self.data = data
+        self.units = units
+
+    def unit(self, name):
+        return self.units[self.columns.index(name)] if self.units else None
 
     def __getitem__(self, name):
         if name not in self.columns:
@@ -52,8 +57,8 @@ class Table:
 
 
 def read_table(path):
-    """A whitespace-separated table whose first line is '# name name ...'; None if the file is
-    missing or holds no rows."""
+    """A whitespace-separated table whose first line is '# name name ...' (and whose second,
+    in postProcessing files, '# [unit] [unit] ...'); None if the file is missing or holds no rows."""
     if not os.path.exists(path):
         return None
     with open(path) as fh:
@@ -61,7 +66,10 @@ def read_table(path):
     rows = [line for line in lines[1:] if line.strip() and not line.startswith("#")]
     if not rows:
         return None
-    return Table(lines[0].lstrip("#").split(), np.genfromtxt(rows, ndmin=2))
+    units = None
+    if len(lines) > 1 and lines[1].startswith("# ["):
+        units = [u.strip("[]") for u in lines[1].lstrip("#").split()]
+    return Table(lines[0].lstrip("#").split(), np.genfromtxt(rows, ndmin=2), units)
 
 
 def read_dat(name, case="."):
@@ -73,7 +81,7 @@ def read_dat(name, case="."):
     parts = [p for p in parts if p is not None]
     if not parts:
         sys.exit("%s holds no rows" % base)
-    return Table(parts[-1].columns, np.vstack([p.data for p in parts]))
+    return Table(parts[-1].columns, np.vstack([p.data for p in parts]), parts[-1].units)
 
 
 def _dictionary_text(path):

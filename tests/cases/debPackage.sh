@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # The Debian package: cpack -G DEB in the build directory (output into a temporary directory)
 # makes spindrift_<version>_<arch>.deb; its control fields name the runtime libraries the
-# binaries link, and it holds the solver, library, plugins, headers, CMake package, etc/,
-# tutorials (input only) and the completion under /usr. Nothing is installed.
+# binaries link (the VTK libraries: package paraview), python3-paraview and bash-completion are
+# recommended, not required, and it holds the solver, library, plugins, headers, CMake package,
+# etc/, tutorials (input only) and the completion under /usr; its prerm removes the python caches
+# a script run as root leaves in /usr/share/spindrift (tried on the package unpacked into a
+# directory, DPKG_ROOT). Nothing is installed.
 #   debPackage.sh <build dir> <version>
 set -euo pipefail
 build=$(cd "$1" && pwd) version=$2
@@ -25,7 +28,32 @@ echo "Depends: $depends"
 needs() { tr -d ' ' <<< "$depends" | tr ',' '\n' | sed 's/(.*//' | grep -qxF "$1" || fail "Depends lacks $1"; }
 for p in libc6 libstdc++6 libgcc-s1 libboost-program-options1.74.0 paraview; do needs "$p"; done
 if ldd "$build/lib/libspindrift.so" | grep -q libgomp; then needs libgomp1; fi
+recommends=$(field Recommends)
+echo "Recommends: $recommends"
+for p in python3-paraview python3-matplotlib bash-completion; do
+    tr -d ' ' <<< "$recommends" | tr ',' '\n' | grep -qxF "$p" || fail "Recommends lacks $p"
+    if tr -d ' ' <<< "$depends" | tr ',' '\n' | sed 's/(.*//' | grep -qxF "$p"; then fail "Depends has $p (only recommended)"; fi
+done
 dpkg-deb -I "$deb" postinst | grep -qw ldconfig || fail "postinst does not run ldconfig for /usr/lib/libspindrift.so"
+# prerm on the unpacked package: the caches go, the package's own files stay
+root=$work/root
+dpkg-deb -x "$deb" "$root"
+dpkg-deb -e "$deb" "$work/control"
+[ -x "$work/control/prerm" ] || fail "no executable prerm"
+mkdir -p "$root/usr/share/spindrift/etc/python/__pycache__" "$root/usr/share/spindrift/tutorials/damBreak2D/__pycache__"
+touch "$root/usr/share/spindrift/etc/python/__pycache__/spindriftValidation.cpython-311.pyc"
+DPKG_ROOT=$root "$work/control/prerm" remove || fail "prerm remove failed"
+if find "$root/usr/share/spindrift" -name __pycache__ | grep -q .; then fail "prerm left a __pycache__"; fi
+[ -f "$root/usr/share/spindrift/etc/python/spindriftValidation.py" ] || fail "prerm removed a file of the package"
+# and a tutorial's script writes none there: RunFunctions keeps python from it (without it, the
+# same import leaves a cache: the check can fail)
+share=$root/usr/share/spindrift
+importValidation='cd "$1/etc/python" && /usr/bin/python3 -c "import spindriftValidation"'
+env -u PYTHONDONTWRITEBYTECODE bash -c ". \"\$1/etc/RunFunctions\" && $importValidation" _ "$share" \
+    || fail "importing spindriftValidation from the package failed"
+if [ -d "$share/etc/python/__pycache__" ]; then fail "a script run through RunFunctions left a __pycache__"; fi
+env -u PYTHONDONTWRITEBYTECODE bash -c "$importValidation" _ "$share" || fail "importing spindriftValidation failed"
+[ -d "$share/etc/python/__pycache__" ] || fail "the control import left no __pycache__ (the check above proves nothing)"
 
 dpkg-deb -c "$deb" | awk '{ print $1, $6 }' > "$work/contents"
 has() { grep -qE "^$1 \./usr/$2$" "$work/contents" || fail "the package lacks /usr/$2"; }

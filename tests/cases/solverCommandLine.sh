@@ -12,7 +12,7 @@ help=$("$solver" -help)
 echo "$help"
 grep -q -- "^  -case <dir> " <<< "$help" || fail "-help does not describe -case <dir>"
 if grep -q -- "^  --" <<< "$help"; then fail "-help describes GNU-style --options"; fi
-for o in dryRun force threads listModels version help; do
+for o in dryRun force threads postProcess func time listModels version help; do
     grep -q -- "^  -$o\b" <<< "$help" || fail "-help does not describe -$o"
 done
 [ "$("$solver" --help)" = "$help" ] || fail "--help differs from -help"
@@ -54,6 +54,10 @@ expectError "unknown option '-frobnicate'" -frobnicate
 if grep -q "did you mean" "$work/err"; then fail "a suggestion for an option nothing is close to"; fi
 expectError "-case" -case
 expectError "-threads" -threads many
+# more threads than cores: refused with a message (100000 crashed in set-up, 2000 died in libgomp)
+cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc) # the CPUs of its affinity mask
+expectError "spindrift: error: -threads 100000: this process may use $cores core" -threads 100000
+expectError "use -threads $cores or fewer" -threads $((cores + 1))
 expectError "unexpected argument" some/case
 
 models=$("$solver" -listModels)
@@ -73,6 +77,32 @@ grep -q "libspindrift_kernel_cubicSpline.so" <<< "$out" || fail "-dryRun does no
 if grep -q "wendlandC2" <<< "$out"; then fail "-dryRun opened a plugin the case does not name"; fi
 [ -f "$work/case/0/fluid.vtp" ] || fail "-dryRun did not write 0/"
 [ ! -d "$work/case/0.01" ] || fail "-dryRun ran time steps"
+# OMP_NUM_THREADS beyond the cores: capped, with a warning
+out=$(OMP_NUM_THREADS=100000 "$solver" -case "$work/case" -dryRun)
+grep -q "^--> Warning: OMP_NUM_THREADS asks for 100000 threads; this process may use $cores core" <<< "$out" \
+    || fail "no warning for OMP_NUM_THREADS=100000: $(grep -i thread <<< "$out")"
+grep -q "^Threads   : $cores (OpenMP wait: " <<< "$out" || fail "OMP_NUM_THREADS=100000 not capped: $(grep Threads <<< "$out")"
+rm -rf "$work/case/0"
+# the OpenMP wait: bounded by default (the runtime, OMP_DISPLAY_ENV, says what it runs with), the
+# user's choice kept; a run on one thread (OMP_NUM_THREADS=1, as here) is left alone
+if "$solver" -version | grep -q "^OpenMP *: on" && [ "$cores" -gt 1 ]; then
+    unset OMP_NUM_THREADS
+    [ "$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT bash -c 'OMP_DISPLAY_ENV=verbose "$1" -version 2>&1 >/dev/null' _ "$solver" \
+         | grep "GOMP_SPINCOUNT =" | tail -n 1)" = "  GOMP_SPINCOUNT = '1000'" ] || fail "the default wait is not GOMP_SPINCOUNT 1000"
+    env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$solver" -version | grep -q "wait: GOMP_SPINCOUNT 1000 (spindrift's default)" \
+        || fail "-version does not name the default wait"
+    [ "$(OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose "$solver" -version 2>&1 >/dev/null | grep -c "GOMP_SPINCOUNT = '1000'")" = 0 ] \
+        || fail "OMP_WAIT_POLICY=active was overridden"
+    OMP_WAIT_POLICY=active "$solver" -version | grep -q "wait: OMP_WAIT_POLICY active (environment)" \
+        || fail "-version does not name the user's OMP_WAIT_POLICY"
+    GOMP_SPINCOUNT=500 "$solver" -version | grep -q "wait: GOMP_SPINCOUNT 500 (environment)" || fail "GOMP_SPINCOUNT=500 not kept"
+    for one in "env OMP_NUM_THREADS=1 $solver -version" "$solver -threads 1 -version"; do
+        [ "$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose $one 2>&1 >/dev/null | grep -c "GOMP_SPINCOUNT =")" = 1 ] \
+            || fail "'$one' started itself again (one thread never waits)"
+    done
+    export OMP_NUM_THREADS=1
+    echo "ok OpenMP wait: GOMP_SPINCOUNT 1000 by default, OMP_WAIT_POLICY / GOMP_SPINCOUNT of the user kept"
+fi
 # the GNU spellings still work
 rm -rf "$work/case/0"
 "$solver" --case "$work/case" --dryRun --threads 1 > /dev/null || fail "--case DIR --dryRun"

@@ -62,6 +62,14 @@ class Readers(unittest.TestCase):
         with self.assertRaises(KeyError):
             stats["kineticEnergy"]
 
+    def test_read_dat_reads_the_units_line(self):
+        write(os.path.join(self.case, "postProcessing", "stats", "0", "stats.dat"),
+              "# Time\tmaxSpeed\trhoErrMax\n# [s]\t[m/s]\t[%]\n0 0 0.1\n1 2 0.3\n")
+        stats = sv.read_dat("stats", self.case)
+        self.assertEqual(stats.units, ["s", "m/s", "%"])
+        self.assertEqual(stats.unit("rhoErrMax"), "%")
+        np.testing.assert_array_equal(stats["rhoErrMax"], [0.1, 0.3])
+
     def test_read_dat_of_a_missing_function_object_says_which(self):
         with self.assertRaises(SystemExit) as e:
             sv.read_dat("front", self.case)
@@ -216,3 +224,34 @@ class Locating(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class PlotScriptUsage(unittest.TestCase):
+    """The utilities' plotting scripts give usage (argparse), not an IndexError traceback."""
+
+    SCRIPTS = [os.path.join(SOURCE, "applications", "utilities", "spindriftBench", "spindriftBenchPlot.py"),
+               os.path.join(SOURCE, "applications", "utilities", "spindriftStress", "spindriftStressPlot.py")]
+
+    def run_script(self, script, *args):
+        return subprocess.run([sys.executable, script, *args], capture_output=True, text=True, timeout=60)
+
+    def test_without_arguments_usage_and_exit_2(self):
+        for script in self.SCRIPTS:
+            r = self.run_script(script)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("usage: " + os.path.basename(script), r.stderr)
+            self.assertNotIn("Traceback", r.stderr)
+
+    def test_help_describes_the_arguments(self):
+        for script in self.SCRIPTS:
+            r = self.run_script(script, "-h")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("positional arguments", r.stdout)
+
+    def test_a_missing_input_is_named(self):
+        r = self.run_script(self.SCRIPTS[0], "/nonexistent/bench.csv", "/tmp/x.png")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no file /nonexistent/bench.csv", r.stderr)
+        r = self.run_script(self.SCRIPTS[1], "/nonexistent")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no directory /nonexistent", r.stderr)

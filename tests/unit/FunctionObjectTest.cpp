@@ -1,6 +1,7 @@
 // Function-object plugins (probes, surgeFront, waterLevel, fieldStats, solverPerformance) on
 // small lattices: values against hand computations, their output files and sampling control.
 #include "TestSupport.hpp"
+#include "PostProcess.hpp"
 
 #include <gtest/gtest.h>
 #include <cmath>
@@ -29,16 +30,17 @@ struct TestScene {
         dicts.push_back(std::make_unique<Dictionary>(Dictionary::fromString(text, "controlDict.functions." + name)));
         return ModelRegistry::instance().create<FunctionObject>(*dicts.back(), s.physics, s.constants, nullptr, dir.path(), name);
     }
-    // rows of postProcessing/<name>/0/<file>.dat
+    // rows of postProcessing/<name>/0/<file>.dat; the header's column names and units lines
     std::vector<std::vector<double>> rows(const std::string& name, std::string* header = nullptr,
-                                          const std::string& file = "") const {
+                                          const std::string& file = "", std::string* units = nullptr) const {
         std::ifstream in(dir.path() / "postProcessing" / name / "0" / ((file.empty() ? name : file) + ".dat"));
         std::vector<std::vector<double>> out;
         std::string line;
         while (std::getline(in, line)) {
             if (line.empty()) continue;
             if (line[0] == '#') {
-                if (header) *header = line;
+                if (header && header->empty()) *header = line;
+                else if (units && units->empty()) *units = line;
                 continue;
             }
             std::istringstream r(line);
@@ -63,13 +65,20 @@ TEST(Probes, ShepardInterpolationIsExactForConstantsAndAccurateForLinearFields) 
     probes->start(sc.s, 0);
     sc.s.time = 0.001;
     probes->execute(sc.s, false);
-    std::string header;
-    const auto r = sc.rows("p", &header);
-    ASSERT_EQ(r.size(), 1u);
+    std::string header, units;
+    const auto rows = sc.rows("p", &header, "", &units);
+    ASSERT_EQ(rows.size(), 2u); // the start row and one sample, of the same state
+    for (std::size_t k = 1; k < rows[0].size(); ++k) {
+        if (!std::isnan(rows[0][k])) {
+            EXPECT_EQ(rows[0][k], rows[1][k]) << k;
+        }
+    }
+    const std::vector<std::vector<double>> r{rows[1]};
     // Time, p × 3, (Ux Uy) × 3, rho × 3
     ASSERT_EQ(r[0].size(), 1u + 3 + 6 + 3);
     EXPECT_NE(header.find("p(0.1037,0.0871)"), std::string::npos) << header;
     EXPECT_NE(header.find("Uy(0.0049,0.1)"), std::string::npos) << header;
+    EXPECT_EQ(units, "# [s]\t[Pa]\t[Pa]\t[Pa]\t[m/s]\t[m/s]\t[m/s]\t[m/s]\t[m/s]\t[m/s]\t[kg/m^3]\t[kg/m^3]\t[kg/m^3]");
     // interior: a linear field within 2 % of its change over one spacing (the lattice's
     // kernel first moment at an off-lattice point), constants to round-off
     EXPECT_NEAR(r[0][1], 1000 + 500 * 0.1037 - 300 * 0.0871, 0.02 * 0.01 * std::hypot(500.0, 300.0));
@@ -107,7 +116,7 @@ TEST(Probes, ALocationOutsideTheCaseIsWarnedOfOnceAtSetUpAndSamplesNan) {
     }
     EXPECT_EQ(testing::internal::GetCapturedStdout().find("arning"), std::string::npos) << "warned once, at set-up";
     const auto r = sc.rows("p");
-    ASSERT_EQ(r.size(), 2u);
+    ASSERT_EQ(r.size(), 3u); // start row + two samples
     for (const auto& row : r) {
         ASSERT_EQ(row.size(), 4u); // the column is kept (the layout follows probeLocations)
         EXPECT_TRUE(std::isfinite(row[1]));
@@ -187,17 +196,20 @@ TEST(FieldStats, EnergyMomentumDensityErrorSpacingAndBounds) {
     }
     auto stats = sc.create("stats", "type fieldStats;");
     stats->start(s, 0);
-    std::string header;
-    const auto r = sc.rows("stats", &header);
+    std::string header, units;
+    const auto r = sc.rows("stats", &header, "", &units);
     ASSERT_EQ(r.size(), 1u);
     EXPECT_NE(header.find("kineticEnergy"), std::string::npos);
+    // the units of every column (2D: per metre of depth), the density error in %
+    EXPECT_EQ(units, "# [s]\t[-]\t[%]\t[%]\t[%]\t[J/m]\t[kg/s]\t[kg/s]\t[m/s]\t[m]\t[m]\t[m]\t[m]\t[m]");
     // Time nParticles rhoErrMin rhoErrMax rhoErrAvg kineticEnergy momentumX momentumY maxSpeed
     // minPairDistance xMin xMax yMin yMax
     ASSERT_EQ(r[0].size(), 14u);
     EXPECT_EQ(r[0][1], 100);
-    EXPECT_NEAR(r[0][2], -0.002, 1e-12);
-    EXPECT_NEAR(r[0][3], 0.002, 1e-12);
-    EXPECT_NEAR(r[0][4], 0.0, 1e-12); // i % 5 is balanced over 100 particles
+    // the density error (ρ − ρ0)/ρ0 in %, as the log's step line
+    EXPECT_NEAR(r[0][2], -0.2, 1e-10);
+    EXPECT_NEAR(r[0][3], 0.2, 1e-10);
+    EXPECT_NEAR(r[0][4], 0.0, 1e-10); // i % 5 is balanced over 100 particles
     EXPECT_NEAR(r[0][5], ke, 1e-9 * ke); // written with 10 digits
     EXPECT_NEAR(r[0][6], px, 1e-9 * std::abs(px));
     EXPECT_NEAR(r[0][7], py, 1e-9 * std::abs(py));
@@ -265,3 +277,25 @@ TEST(FunctionObjects, UnknownKeywordIsAnError) {
 }
 
 } // namespace
+
+TEST(PostProcess, SelectTimesTakesTimesRangesAndLatestTime) {
+    const std::vector<std::pair<double, std::string>> written{
+        {0, "0"}, {0.01, "0.01"}, {0.02, "0.02"}, {0.03, "0.03"}, {1e-05 * 4000, "0.04"}};
+    const auto names = [&](const std::string& selection) {
+        std::string s;
+        for (const auto& t : selectTimes(written, selection)) s += (s.empty() ? "" : " ") + t.second;
+        return s;
+    };
+    EXPECT_EQ(names(""), "0 0.01 0.02 0.03 0.04");
+    EXPECT_EQ(names("0.02"), "0.02");
+    EXPECT_EQ(names("0.01, 0.03"), "0.01 0.03");
+    EXPECT_EQ(names("0.015:0.03"), "0.02 0.03"); // inclusive
+    EXPECT_EQ(names(":0.01"), "0 0.01");
+    EXPECT_EQ(names("0.03:"), "0.03 0.04");
+    EXPECT_EQ(names("latestTime"), "0.04");
+    EXPECT_EQ(names("0.04000000001"), "0.04");  // within 1e-9 (relative)
+    EXPECT_EQ(names("0.5"), "");                // nothing: postProcess() names the written times
+    EXPECT_EQ(names("0,0:0.01"), "0 0.01");     // each once, in time order
+    for (const char* bad : {"a", "0.1:b", "0.1:0.2:0.3", "0.1,,x"})
+        EXPECT_THROW(selectTimes(written, bad), std::runtime_error) << bad;
+}

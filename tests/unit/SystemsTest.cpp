@@ -184,6 +184,8 @@ TEST_P(TankForce, BalancesTheWaterMomentumAndIsItsWeight) {
     EXPECT_EQ(header.rfind("# Time\ttotal_x\ttotal_y\ttotal_z\tpressure_x", 0), 0u) << header;
     double impulse = 0, lastTime = 1.0, pressureSum = 0, sum = 0;
     int rows = 0;
+    std::getline(in, line);
+    EXPECT_EQ(line.rfind("# [s]\t[N/m]\t[N/m]", 0), 0u) << "units: " << line;
     while (std::getline(in, line)) {
         std::istringstream row(line);
         double t, total[3], pressure[3];

@@ -1,6 +1,7 @@
 // spindrift — the SPH solver application.
 //
 //   spindrift [-case DIR] [-dryRun] [-force] [-threads N] [-listModels [kind]] [-version] [-help]
+//   spindrift -postProcess [-func NAME] [-time RANGE] [-case DIR]
 //
 // Options are spelt as OpenFOAM's (-case DIR); the GNU spellings (--case DIR, --case=DIR) are
 // aliases. A misspelt option is refused with the closest one ("did you mean '-dryRun'?"),
@@ -9,11 +10,14 @@
 #include "Error.hpp"
 #include "Log.hpp"
 #include "ModelRegistry.hpp"
+#include "PostProcess.hpp"
 #include "Simulation.hpp"
 
 #include <boost/program_options.hpp>
 #include <sys/resource.h>
 #include <unistd.h>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <iostream>
 #ifdef _OPENMP
@@ -23,7 +27,75 @@
 namespace po = boost::program_options;
 using namespace spindrift;
 
+// The OpenMP runtime's wait policy, chosen before the runtime starts. libgomp reads
+// OMP_WAIT_POLICY and GOMP_SPINCOUNT once, when it is loaded (before main()); by default a thread
+// that reaches the end of a parallel loop first spins up to 300,000 times before it sleeps. On a
+// busy machine (a laptop, a shared server, ctest running tests side by side) those spinning
+// threads take the cores from the threads still working: issue 34 measured a 2-core host with
+// other work running take 35-53 s with every core against 3-7.5 s with one thread. Unless the
+// user chose (OMP_WAIT_POLICY or GOMP_SPINCOUNT set), the spin is bounded to
+// openMPDefaultSpinCount, measured (README, "Threads"; damBreak2D to 0.02 s, medians of 5 and 3):
+// on a machine as if idle 0.79 s against the runtime's default 0.72 s (passive: 1.96 s, 300
+// spins: 1.35 s), on one loaded by others (load 10-15) 5.8 s against 28 s (10,000 spins: 24 s,
+// passive 3.3 s, one thread 3.1 s). The runtime has read its environment by the time any code
+// of ours runs (the executable's .preinit_array runs before libc has even set up the
+// environment), so the process starts itself again with the variable set: execv of
+// /proc/self/exe, the same pid and arguments, about 0.05 s. Not for a run on one thread (no
+// thread ever waits: OMP_NUM_THREADS=1, as ctest's case tests and the bench's runs set it,
+// -threads 1, or one core), which starts as fast as before.
 namespace {
+constexpr const char* openMPDefaultSpinCount = "1000";
+constexpr const char* openMPWaitMarker = "SPINDRIFT_OPENMP_WAIT_DEFAULT"; // set for the restarted process only
+bool openMPWaitDefaulted = false; // the spin bound above is in force (the user chose none)
+
+// Whether the command line or the environment asks for one thread (or the machine has one core).
+bool oneThread(int argc, char** argv) {
+#ifdef _OPENMP
+    if (omp_get_num_procs() <= 1) return true;
+#endif
+    if (const char* n = std::getenv("OMP_NUM_THREADS"); n && std::string(n) == "1") return true;
+    for (int k = 1; k < argc; ++k) {
+        const std::string a = argv[k];
+        if ((a == "-threads" || a == "--threads") && k + 1 < argc && std::string(argv[k + 1]) == "1") return true;
+        if (a == "-threads=1" || a == "--threads=1") return true;
+    }
+    return false;
+}
+
+void chooseOpenMPWaitPolicy(int argc, char** argv) {
+#ifdef _OPENMP
+    if (std::getenv(openMPWaitMarker)) { // the restarted process
+        ::unsetenv(openMPWaitMarker);
+        const char* spin = std::getenv("GOMP_SPINCOUNT");
+        openMPWaitDefaulted = spin && std::string(spin) == openMPDefaultSpinCount;
+        return;
+    }
+    if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return; // the user's choice
+    if (oneThread(argc, argv)) return;
+    // under valgrind /proc/self/exe is valgrind's tool, which refuses to be started so
+    if (const char* preload = std::getenv("LD_PRELOAD"); preload && std::strstr(preload, "vgpreload")) return;
+    if (::setenv("GOMP_SPINCOUNT", openMPDefaultSpinCount, 1) != 0 || ::setenv(openMPWaitMarker, "1", 1) != 0) return;
+    ::execv("/proc/self/exe", argv);
+    // no restart (no /proc): this process keeps the runtime's default, and says so
+    ::unsetenv("GOMP_SPINCOUNT");
+    ::unsetenv(openMPWaitMarker);
+#else
+    (void)argc;
+    (void)argv;
+#endif
+}
+} // namespace
+
+namespace {
+
+// "OMP_WAIT_POLICY passive (environment)", "GOMP_SPINCOUNT 10000 (spindrift's default)", ...
+std::string openMPWaitDescription() {
+    if (openMPWaitDefaulted) return std::string("GOMP_SPINCOUNT ") + openMPDefaultSpinCount + " (spindrift's default)";
+    std::string d;
+    for (const char* name : {"OMP_WAIT_POLICY", "GOMP_SPINCOUNT"})
+        if (const char* v = std::getenv(name)) d += (d.empty() ? "" : ", ") + std::string(name) + " " + v;
+    return d.empty() ? "the OpenMP runtime's default" : d + " (environment)";
+}
 
 // The options, each once: what the parser accepts and what -help prints are made from this.
 struct CommandLineOption {
@@ -46,10 +118,20 @@ std::vector<CommandLineOption> commandLineOptions() {
         {"force", "",
          "run a case even when its particle estimate exceeds the memory available (refused otherwise)",
          new po::untyped_value(true)},
-        {"threads", "<N>", "number of OpenMP threads (default: OMP_NUM_THREADS, else every core)",
+        {"threads", "<N>",
+         "number of OpenMP threads, at most the cores this process may use (default: OMP_NUM_THREADS, else "
+         "every core)",
          po::value<int>()},
         {"listModels", "[kind]", "list the available models, or those of one kind: " + kinds,
          po::value<std::string>()->implicit_value("")},
+        {"postProcess", "",
+         "run the case's function objects (controlDict 'functions') over its written times without solving, "
+         "writing postProcessing/<name>/<first time>/ as a run does",
+         new po::untyped_value(true)},
+        {"func", "<name>", "with -postProcess: only the function object of that name", po::value<std::string>()},
+        {"time", "<range>",
+         "with -postProcess: the written times to process, e.g. 0.5, 0.1:0.3, :0.2, 0.4:, 0,0.5 (default: all)",
+         po::value<std::string>()},
         {"version", "", "print the version and the build (precision, type, flags) and exit",
          new po::untyped_value(true)},
         {"help", "", "print this help and exit", new po::untyped_value(true)},
@@ -97,7 +179,8 @@ void printVersion() {
               << "\nCompiler   : " << build::compiler << "\nFlags      : " << build::flags << "\nOpenMP     : ";
 #ifdef _OPENMP
     const int threads = omp_get_max_threads();
-    std::cout << "on (" << threads << (threads == 1 ? " thread" : " threads") << " here by default)";
+    std::cout << "on (" << threads << (threads == 1 ? " thread" : " threads") << " here by default; wait: "
+              << openMPWaitDescription() << ")";
 #else
     std::cout << "off";
 #endif
@@ -153,7 +236,7 @@ std::string startedLine() {
     return std::string(date) + " on " + host + ", pid " + std::to_string(getpid());
 }
 
-void banner(const Simulation& sim, int threads) {
+void banner(const Simulation& sim, const std::string& threads) {
     const auto& s = const_cast<Simulation&>(sim).scene();
     log::Line() << "Spindrift : " << build::version << (*build::gitDescribe ? std::string(" (git ") + build::gitDescribe + ")" : "")
                 << ", " << build::precision << ", " << build::type;
@@ -174,9 +257,40 @@ void banner(const Simulation& sim, int threads) {
     log::Line() << "Plugins   :" << libs;
 }
 
+// Sets the OpenMP thread count (-threads N, else OMP_NUM_THREADS, else every core) and returns it
+// for the banner, with the wait policy. More threads than the cores this process may use
+// (omp_get_num_procs: the CPUs of its affinity mask, as nproc counts them) only wait for each
+// other, and thousands of them fail in the runtime: -threads N beyond the cores is refused,
+// OMP_NUM_THREADS beyond them is capped with a warning.
+std::string chooseThreadCount(const po::variables_map& vm) {
+#ifdef _OPENMP
+    const int cores = omp_get_num_procs();
+    if (vm.count("threads")) {
+        const int n = vm["threads"].as<int>();
+        if (n < 1) throw std::runtime_error("-threads must be at least 1");
+        if (n > cores)
+            throw std::runtime_error("-threads " + std::to_string(n) + ": this process may use " +
+                                     std::to_string(cores) + (cores == 1 ? " core" : " cores") +
+                                     "; more threads only wait for each other: use -threads " +
+                                     std::to_string(cores) + " or fewer");
+        omp_set_num_threads(n);
+    } else if (omp_get_max_threads() > cores) {
+        log::warning("OMP_NUM_THREADS asks for " + std::to_string(omp_get_max_threads()) + " threads; this process may use " +
+                     std::to_string(cores) + (cores == 1 ? " core" : " cores") + ": running " +
+                     std::to_string(cores) + (cores == 1 ? " thread" : " threads"));
+        omp_set_num_threads(cores);
+    }
+    return std::to_string(omp_get_max_threads()) + " (OpenMP wait: " + openMPWaitDescription() + ")";
+#else
+    (void)vm;
+    return "1 (built without OpenMP)";
+#endif
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+    chooseOpenMPWaitPolicy(argc, argv); // first: it may start the process again
     log::installFatalSignalHandlers();
     const std::vector<CommandLineOption> optionTable = commandLineOptions();
     po::options_description options;
@@ -219,17 +333,22 @@ int main(int argc, char** argv) {
             listModels(vm["listModels"].as<std::string>());
             return 0;
         }
+        const bool postProcessing = vm.count("postProcess") > 0;
+        for (const char* o : {"func", "time"})
+            if (vm.count(o) && !postProcessing)
+                throw std::runtime_error(std::string("-") + o + " selects what -postProcess runs: use it with -postProcess");
+        if (postProcessing && vm.count("dryRun")) throw std::runtime_error("-postProcess and -dryRun: give one of them");
         stopAtOnceOnSignalsDuringSetUp();
-        int threads = 1;
-#ifdef _OPENMP
-        if (vm.count("threads")) {
-            if (vm["threads"].as<int>() < 1) throw std::runtime_error("-threads must be at least 1");
-            omp_set_num_threads(vm["threads"].as<int>());
-        }
-        threads = omp_get_max_threads();
-#endif
+        const std::string threads = chooseThreadCount(vm);
         Simulation sim(vm["case"].as<std::string>(), vm.count("force") > 0);
         banner(sim, threads);
+        if (postProcessing) {
+            PostProcessRequest request;
+            if (vm.count("func")) request.function = vm["func"].as<std::string>();
+            if (vm.count("time")) request.times = vm["time"].as<std::string>();
+            postProcess(sim, request);
+            return 0;
+        }
         if (vm.count("dryRun")) {
             sim.writeInitialState();
             log::info("Dry run: wrote time " + CaseWriter::timeName(sim.scene().time) + "; End");

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <sched.h>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -131,6 +132,26 @@ std::optional<int> parseCommandLine(int argc, char** argv, const po::options_des
         return 0;
     }
     return std::nullopt;
+}
+
+int availableCores() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+    return int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+void checkThreadsAndTimeout(const po::variables_map& vm) {
+    const int threads = vm["threads"].as<int>(), cores = availableCores();
+    if (threads < 1 || threads > cores)
+        throw std::runtime_error("-threads " + std::to_string(threads) + ": give 1 to " + std::to_string(cores) +
+                                 " (the cores this process may use)");
+    const double timeout = vm["timeout"].as<double>();
+    if (!(timeout >= 0) || !std::isfinite(timeout)) {
+        std::ostringstream m;
+        m << "-timeout " << timeout << ": give the seconds after which a run is stopped (0: no limit)";
+        throw std::runtime_error(m.str());
+    }
 }
 
 std::vector<Combination> requestedCombinations(const po::variables_map& vm) {

@@ -55,6 +55,13 @@ std::vector<Combination> combinations(const std::vector<VaryOption>& options);
 // the error and the help; nothing when it goes on.
 std::optional<int> parseCommandLine(int argc, char** argv, const boost::program_options::options_description& options,
                                     const std::string& utility, boost::program_options::variables_map& vm);
+// The cores this process may use (its CPU affinity mask, as nproc counts them; at least 1).
+int availableCores();
+// Checks the options both utilities share: -threads (1 to availableCores(): more threads than
+// cores only wait for each other, and thousands fail in the OpenMP runtime) and -timeout (0 =
+// none, else positive seconds). Throws std::runtime_error naming the option.
+void checkThreadsAndTimeout(const boost::program_options::variables_map& vm);
+
 // The combinations a command line asks for: the product of its -vary options, plus its
 // -combination options (alone when there is no -vary).
 std::vector<Combination> requestedCombinations(const boost::program_options::variables_map& vm);

@@ -25,6 +25,11 @@
 // the combination sets), each under a comment citing its bench.csv row; the file it replaces is
 // kept as <file>.orig. No combination meeting the bound: the case is left alone, exit status 1.
 //
+// Exit status 1 when no combination ran to the end (every run failed, was unstable, timed out or
+// unavailable), when an option is out of range (-threads beyond the cores, a negative -timeout,
+// an -output inside the case) or when a -vary or -combination key names no entry of the case
+// (checked before any run); 2 on a command line that does not parse.
+//
 // -soak N (Soak.hpp): instead of the table, N random kills (SIGKILL) and restarts of the case,
 // each run to the end and compared bit for bit with an uninterrupted run.
 #include "BenchSupport.hpp"
@@ -237,6 +242,7 @@ int main(int argc, char** argv) {
         if (!fs::is_directory(caseDir / "system"))
             throw std::runtime_error("'" + caseDir.string() + "' is not a case (no system/)");
         const std::string caseName = fs::weakly_canonical(caseDir).filename().string();
+        checkThreadsAndTimeout(vm);
         const auto combos = requestedCombinations(vm);
         std::optional<PickRequest> pick;
         if (vm.count("pick")) pick = parsePick(vm["pick"].as<std::string>());
@@ -247,6 +253,15 @@ int main(int argc, char** argv) {
         }
         const auto keys = keysOf(combos);
         const fs::path output = fs::absolute(vm.count("output") ? vm["output"].as<std::string>() : "bench-" + caseName);
+        {
+            // each run copies the case's input: an output inside the case would copy the runs into themselves
+            const fs::path c = fs::weakly_canonical(caseDir), o = fs::weakly_canonical(output);
+            const auto [end, rest] = std::mismatch(c.begin(), c.end(), o.begin(), o.end());
+            if (end == c.end())
+                throw std::runtime_error("-output " + output.string() + (o == c ? " is the case itself" : " lies inside the case " + c.string()) +
+                                         ": each run copies the case's input, which would then hold the runs; give a "
+                                         "directory outside the case (-output)");
+        }
         const int threads = vm["threads"].as<int>();
         const double timeout = vm["timeout"].as<double>();
         const bool quick = vm.count("quick") > 0, keep = vm.count("keep") > 0;
@@ -262,6 +277,12 @@ int main(int argc, char** argv) {
                 std::cerr << "spindriftBench: warning: " << caseName
                           << " has no system/benchDict 'quick' settings; -quick runs it as it is\n";
             }
+        }
+        // every override names an entry of the case (a misspelt -vary key would fail every run)
+        for (const auto& c : combos) {
+            CaseDictionaries dicts(caseDir);
+            dicts.apply(quickOverrides, presets);
+            dicts.apply(c, presets);
         }
 
         const fs::path exeDir = executableDirectory();
@@ -377,6 +398,13 @@ int main(int argc, char** argv) {
                           {(output / "bench.csv").string(), (output / "bench.png").string(), caseName + (quick ? " (quick)" : "")},
                           output, 120))
             std::cout << "Plot: " << (output / "bench.png").string() << std::endl;
+        const auto ok = std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.status == "ok"; });
+        if (ok == 0) {
+            std::cerr << "spindriftBench: error: none of the " << rows.size()
+                      << " combination(s) ran to the end (statuses and reasons above and in " << (output / "bench.csv").string()
+                      << ")" << std::endl;
+            return 1;
+        }
         if (pick) return pickCombination(*pick, rows, caseDir, output / "bench.csv", presets, quick);
         return 0;
     } catch (const std::exception& e) {

@@ -8,23 +8,47 @@ the numbers' combinations listed beside the plot and the figure's definition und
 Rows without an error figure use the maximum density error (%) instead; rows whose run did not
 finish (unstable, failed, timeout, unavailable) are listed with their status.
 """
+import argparse
 import os
 import sys
 
 # etc/python/spindriftValidation.py: from $SPINDRIFT_DIR, the source tree or the installed share/spindrift
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path[1:1] = [os.path.join(d, "etc", "python") for d in (os.environ.get("SPINDRIFT_DIR"), os.path.join(here, "..", "..", ".."), here) if d]
-try:
-    import spindriftValidation as sv
-except ImportError as e:
-    sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
+sv = None
+
+
+def import_validation_module():
+    """spindriftValidation (numpy, matplotlib), once the command line is known good."""
+    global sv
+    try:
+        import spindriftValidation as module
+    except ImportError as e:
+        if e.name == "spindriftValidation":
+            sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
+        sys.exit("%s: %s: run it with a python3 that has numpy and matplotlib (Debian: python3-matplotlib)"
+                 % (sys.argv[0], e))
+    sv = module
+
+
+def arguments():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog="spindriftBench draws it itself (bench.png beside bench.csv) unless -noPlot.")
+    ap.add_argument("csv", help="the bench.csv spindriftBench wrote")
+    ap.add_argument("png", help="the plot to write")
+    ap.add_argument("title", nargs="?", default="", help="the plot's title (e.g. the case's name)")
+    args = ap.parse_args()
+    if not os.path.isfile(args.csv):
+        ap.error("no file %s" % args.csv)
+    return args
 
 
 def main():
+    args = arguments()
+    import_validation_module()
     from matplotlib.ticker import ScalarFormatter
 
-    source, target = sys.argv[1], sys.argv[2]
-    title = sys.argv[3] if len(sys.argv) > 3 else ""
+    source, target, title = args.csv, args.png, args.title
     rows = sv.read_csv(source)
     ok = [r for r in rows if r["status"] == "ok"]
     use_figure = any(r["figure"] for r in ok)

@@ -275,7 +275,7 @@ void stillWater(Harness& h, const std::vector<Combination>& combos) {
             if (m > 10 && o.status == "ok") {
                 speedEnd = csvNumber(speed.back(), 4);
                 speedLate = csvNumber(mean(speed, m - m / 10, m), 4);
-                rhoLate = csvNumber(100 * maxOf(rho, m / 2, m), 4);
+                rhoLate = csvNumber(maxOf(rho, m / 2, m), 4); // fieldStats writes %
                 keEnd = csvNumber(ke.back(), 4);
                 // average over the gauges of (late level − level after settling)
                 double d = 0;
@@ -561,7 +561,7 @@ void impact(Harness& h, const std::vector<Combination>& combos) {
             double pMin = std::numeric_limits<double>::infinity();
             for (double v : pair)
                 if (std::isfinite(v)) pMin = std::min(pMin, v);
-            row.insert(row.end(), {csvNumber(100 * maxOf(rho, 0, rho.size()), 4),
+            row.insert(row.end(), {csvNumber(maxOf(rho, 0, rho.size()), 4), // %
                                    contact < ke.size() ? csvNumber(maxOf(ke, contact, ke.size()) / ke0, 4) : "",
                                    csvNumber(ke.back() / ke0, 4), escaped ? "yes" : "no", csvNumber(pMin / dx, 4), o.note});
             h.keepSeries(dir, "impact", name, {"stats"});
@@ -608,6 +608,7 @@ int main(int argc, char** argv) {
     if (const auto status = parseCommandLine(argc, argv, options, "spindriftStress", vm)) return *status;
     try {
         log::setQuiet(true);
+        checkThreadsAndTimeout(vm);
         const auto combos = requestedCombinations(vm);
         Settings s;
         s.output = fs::absolute(vm["output"].as<std::string>());
@@ -620,6 +621,19 @@ int main(int argc, char** argv) {
         s.densityBound = vm["densityBound"].as<double>();
         s.resolution = vm["resolution"].as<int>();
         s.stillWaterTime = vm["stillWaterTime"].as<double>();
+        if (s.resolution != 0 && s.resolution < 4)
+            throw std::runtime_error("-resolution " + std::to_string(s.resolution) +
+                                     ": give the particles across the water depth (at least 4), or 0 for the default");
+        if (!(s.stillWaterTime >= 0) || !std::isfinite(s.stillWaterTime)) {
+            std::ostringstream m;
+            m << "-stillWaterTime " << s.stillWaterTime << ": give the physical time in s (positive), or 0 for the default";
+            throw std::runtime_error(m.str());
+        }
+        if (!(s.densityBound > 0) || !std::isfinite(s.densityBound)) {
+            std::ostringstream m;
+            m << "-densityBound " << s.densityBound << ": give a positive fraction (0.25: 25 %)";
+            throw std::runtime_error(m.str());
+        }
         if (vm.count("presets")) {
             std::ifstream in(vm["presets"].as<std::string>());
             if (!in) throw std::runtime_error("cannot read -presets " + vm["presets"].as<std::string>());

@@ -10,6 +10,7 @@ One colour per combination, named in a legend under the panels.
 
     spindriftStressPlot.py <output directory>
 """
+import argparse
 import os
 import sys
 import textwrap
@@ -17,10 +18,20 @@ import textwrap
 # etc/python/spindriftValidation.py: from $SPINDRIFT_DIR, the source tree or the installed share/spindrift
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path[1:1] = [os.path.join(d, "etc", "python") for d in (os.environ.get("SPINDRIFT_DIR"), os.path.join(here, "..", "..", ".."), here) if d]
-try:
-    import spindriftValidation as sv
-except ImportError as e:
-    sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
+sv = None
+
+
+def import_validation_module():
+    """spindriftValidation (numpy, matplotlib), once the command line is known good."""
+    global sv
+    try:
+        import spindriftValidation as module
+    except ImportError as e:
+        if e.name == "spindriftValidation":
+            sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
+        sys.exit("%s: %s: run it with a python3 that has numpy and matplotlib (Debian: python3-matplotlib)"
+                 % (sys.argv[0], e))
+    sv = module
 
 STATUS_COLOURS = {"ok": "C2", "atCap": "C1"}  # maxDeltaT bars; any other status has no bar
 
@@ -63,7 +74,7 @@ def still_water(out):
         if s is None:
             return
         axes[0].semilogy(s.time, s["maxSpeed"], color=colour, lw=1, label=label)
-        axes[1].plot(s.time, 100 * s["rhoErrMax"], color=colour, lw=1)
+        axes[1].plot(s.time, s["rhoErrMax"], color=colour, lw=1)
         level = series(out, "stillWater", r["combination"], "level")
         if level is not None:
             gauges = [i for i, c in enumerate(level.columns) if c.startswith("level")]
@@ -84,7 +95,8 @@ def max_delta_t(out):
     from matplotlib.patches import Patch
     names = ["\n".join(textwrap.wrap(r["combination"].replace("_", " "), 36, break_on_hyphens=False)) for r in rows]
     values = [float(r["courantOnH"]) if r["courantOnH"] else 0.0 for r in rows]
-    fig, ax = plt.subplots(figsize=(9, 1.0 + 0.45 * sum(n.count("\n") + 1 for n in names)))
+    # tall enough for the y label (a quick run has one or two bars)
+    fig, ax = plt.subplots(figsize=(9, max(3.2, 1.0 + 0.45 * sum(n.count("\n") + 1 for n in names))))
     y = range(len(rows))
     ax.barh(y, values, color=[STATUS_COLOURS.get(r["status"], "C3") for r in rows])
     for i, r in enumerate(rows):
@@ -97,7 +109,7 @@ def max_delta_t(out):
     ax.invert_yaxis()
     ax.margins(x=0.08)
     ax.set_xlabel("largest stable fixed Δt [h / c$_0$] (h = kernel support radius, c$_0$ = sound speed)")
-    ax.set_ylabel("model combination (the models it changes)")
+    ax.set_ylabel("model combination\n(the models it changes)")
     ax.set_title("(b) largest stable time step (still-water tank)")
     ax.grid(axis="x", alpha=0.3)
     meaning = {"ok": "stable up to this step", "atCap": "stable at every step tried (≥)"}
@@ -130,7 +142,7 @@ def impact(out):
             return
         ke = s["kineticEnergy"]
         axes[0].plot(s.time, ke / ke[0], color=colour, lw=1, label=label)
-        axes[1].plot(s.time, 100 * s["rhoErrMax"], color=colour, lw=1)
+        axes[1].plot(s.time, s["rhoErrMax"], color=colour, lw=1)
 
     time_series_figure(out, "impact", "(d) block thrown at a wall at 10 m/s",
                        [("t [s]", "kinetic energy / initial [-]", "kinetic energy"),
@@ -139,7 +151,13 @@ def impact(out):
 
 
 def main():
-    out = sys.argv[1]
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog="spindriftStress draws them itself into its -output directory unless -noPlot.")
+    ap.add_argument("output", help="spindriftStress's output directory (stress_<test>.csv, series/)")
+    out = ap.parse_args().output
+    if not os.path.isdir(out):
+        ap.error("no directory %s" % out)
+    import_validation_module()
     still_water(out)
     max_delta_t(out)
     jitter(out)

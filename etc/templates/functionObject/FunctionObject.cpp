@@ -14,7 +14,7 @@ public:
     explicit TemplateFunctionObject(const ModelContext& c) : caseDir_(c.caseDirectory), name_(c.name) {}
 
     void start(const Scene&, double startTime) override {
-        file_ = PostProcessingFile(caseDir_, name_, startTime, {"maxSpeed"});
+        file_ = PostProcessingFile(caseDir_, name_, startTime, {{"maxSpeed", "m/s"}}); // name, unit
     }
 
     void execute(const Scene& s, bool) override {

@@ -16,6 +16,8 @@
 //  * shepardSum(): Shepard-normalised SPH interpolation at a point,
 //        f(x) = Σ_j f_j V_j W(x − x_j) / Σ_j V_j W(x − x_j),   V_j = m/ρ_j.
 //  * columnLabel(): "p(0.1,0.05,0)"-style column names carrying the sample location.
+//  * lengthUnit(), massUnit(): units of per-unit-depth quantities in 2D (a 2D case's particle
+//    mass is per metre of depth: kg/m).
 #pragma once
 
 #include "Dictionary.hpp"
@@ -100,7 +102,7 @@ protected:
           systemName_(c.dict.getOrDefault<std::string>("system", "")),
           systemWhere_(c.dict.found("system") ? c.dict.locationOf("system") : c.dict.where()) {}
     // Opens the output (call it from start(); it selects the sampled system if not yet done).
-    void open(const Scene& s, double startTime, const std::vector<std::string>& columns) {
+    void open(const Scene& s, double startTime, const std::vector<PostProcessingColumn>& columns) {
         select(s);
         file_ = PostProcessingFile(caseDir_, name_, startTime, columns);
         control_.start(startTime);
@@ -172,6 +174,9 @@ inline std::string columnLabel(const std::string& name, const Vec3& p, int dimen
     o << ')';
     return o.str();
 }
+
+// "kg" in 3D, "kg/m" (per metre of depth) in 2D; the other extensive units follow from it.
+inline std::string massUnit(int dimension) { return dimension == 3 ? "kg" : "kg/m"; }
 
 inline constexpr double notANumber = std::numeric_limits<double>::quiet_NaN();
 

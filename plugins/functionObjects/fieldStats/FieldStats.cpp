@@ -1,10 +1,11 @@
 // fieldStats — global measures of the fluid state for validation and stability checks:
 //   nParticles                      number of fluid particles
-//   rhoErrMin rhoErrMax rhoErrAvg   signed density error (ρ_i − ρ0)/ρ0: min, max, average
-//                                   (a free surface shows as a negative minimum with
-//                                   summation density)
+//   rhoErrMin rhoErrMax rhoErrAvg   the density error (ρ_i − ρ0)/ρ0 in %, signed (> 0
+//                                   compressed): min, max, average over the particles — the
+//                                   log's "rhoErr min/max/avg", one definition (a free surface
+//                                   shows as a negative minimum with summation density)
 //   kineticEnergy                   Σ ½ m |v_i|²  (J; J/m per unit depth in 2D)
-//   momentumX momentumY [momentumZ] Σ m v_i
+//   momentumX momentumY [momentumZ] Σ m v_i  (kg m/s; kg/s per unit depth in 2D)
 //   maxSpeed                        max |v_i|
 //   minPairDistance                 min |x_i − x_j| over fluid pairs closer than the support
 //                                   radius (the particle-clustering measure; nan if none)
@@ -13,7 +14,8 @@
 //
 //   stats { type fieldStats; writeControl timeStep; writeInterval 1; }
 //
-// Output postProcessing/<name>/<startTime>/<name>.dat; a row is written at the start time too.
+// Output postProcessing/<name>/<startTime>/<name>.dat (units in the header's second line); a row
+// is written at the start time too.
 #include "FunctionObjectSupport.hpp"
 #include "Plugin.hpp"
 
@@ -26,13 +28,18 @@ public:
     explicit FieldStats(const ModelContext& c) : SamplingFunctionObject(c) {}
 
     void start(const Scene& s, double startTime) override {
-        std::vector<std::string> columns{"nParticles", "rhoErrMin", "rhoErrMax", "rhoErrAvg", "kineticEnergy"};
-        for (int a = 0; a < dim_; ++a) columns.push_back(std::string("momentum") + "XYZ"[a]);
-        columns.push_back("maxSpeed");
-        columns.push_back("minPairDistance");
+        const bool perDepth = dim_ == 2; // a 2D case's mass is per metre of depth
+        std::vector<PostProcessingColumn> columns{{"nParticles", "-"},
+                                                  {"rhoErrMin", "%"},
+                                                  {"rhoErrMax", "%"},
+                                                  {"rhoErrAvg", "%"},
+                                                  {"kineticEnergy", perDepth ? "J/m" : "J"}};
+        for (int a = 0; a < dim_; ++a) columns.push_back({std::string("momentum") + "XYZ"[a], perDepth ? "kg/s" : "kg*m/s"});
+        columns.push_back({"maxSpeed", "m/s"});
+        columns.push_back({"minPairDistance", "m"});
         for (int a = 0; a < dim_; ++a) {
-            columns.push_back(std::string(1, "xyz"[a]) + "Min");
-            columns.push_back(std::string(1, "xyz"[a]) + "Max");
+            columns.push_back({std::string(1, "xyz"[a]) + "Min", "m"});
+            columns.push_back({std::string(1, "xyz"[a]) + "Max", "m"});
         }
         open(s, startTime, columns);
         sample(s, false);
@@ -53,9 +60,10 @@ private:
             file_.writeRow(s.time, row);
             return;
         }
-        const double errMin = parallelMin(n, [&](std::size_t i) { return (rho[i] - rho0) / rho0; });
-        const double errMax = -parallelMin(n, [&](std::size_t i) { return -(rho[i] - rho0) / rho0; });
-        const double errAvg = deterministicSum(n, [&](std::size_t i) { return (rho[i] - rho0) / rho0; }) / double(n);
+        const double percent = 100 / rho0; // (ρ − ρ0)/ρ0 in %
+        const double errMin = parallelMin(n, [&](std::size_t i) { return (rho[i] - rho0) * percent; });
+        const double errMax = -parallelMin(n, [&](std::size_t i) { return -(rho[i] - rho0) * percent; });
+        const double errAvg = deterministicSum(n, [&](std::size_t i) { return (rho[i] - rho0) * percent; }) / double(n);
         const double ke = 0.5 * m * deterministicSum(n, [&](std::size_t i) { return double(v[i].squaredNorm()); });
         row.insert(row.end(), {errMin, errMax, errAvg, ke});
         for (int a = 0; a < dim_; ++a)

@@ -26,7 +26,7 @@ using namespace spindrift::functionObjects;
 class Forces final : public FunctionObject {
 public:
     explicit Forces(const ModelContext& c)
-        : name_(c.name), caseDir_(c.caseDirectory), control_(c.dict),
+        : name_(c.name), caseDir_(c.caseDirectory), dimension_(c.physics.dimension), control_(c.dict),
           patches_(c.dict.getOrDefault<std::vector<std::string>>("patches", {})),
           patchesWhere_(c.dict.found("patches") ? c.dict.locationOf("patches") : c.dict.where()) {
         const Vec3 cofr = c.dict.getOrDefault<Vec3>("CofR", Vec3::Zero());
@@ -57,11 +57,16 @@ public:
     }
 
     void start(const Scene&, double startTime) override {
-        std::vector<std::string> columns;
-        for (const char* part : {"total", "pressure", "viscous", "other"})
-            for (int a = 0; a < 3; ++a) columns.push_back(std::string(part) + "_" + "xyz"[a]);
-        force_ = PostProcessingFile(caseDir_, name_, startTime, columns, "force");
-        moment_ = PostProcessingFile(caseDir_, name_, startTime, columns, "moment");
+        // per metre of depth in 2D
+        const std::string perDepth = dimension_ == 2 ? "/m" : "";
+        const auto columns = [&](const std::string& unit) {
+            std::vector<PostProcessingColumn> c;
+            for (const char* part : {"total", "pressure", "viscous", "other"})
+                for (int a = 0; a < 3; ++a) c.push_back({std::string(part) + "_" + "xyz"[a], unit + perDepth});
+            return c;
+        };
+        force_ = PostProcessingFile(caseDir_, name_, startTime, columns("N"), "force");
+        moment_ = PostProcessingFile(caseDir_, name_, startTime, columns("N m"), "moment");
         control_.start(startTime);
     }
 
@@ -89,6 +94,7 @@ public:
 private:
     std::string name_;
     std::filesystem::path caseDir_;
+    int dimension_;
     SampleControl control_;
     std::vector<std::string> patches_;
     SourceLocation patchesWhere_;

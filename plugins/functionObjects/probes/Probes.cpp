@@ -20,8 +20,10 @@
 //       writeInterval   10;
 //   }
 //
-// Output postProcessing/<name>/<startTime>/<name>.dat: one row per sample, columns field-major
-// ("p(0.1,0.045)", ..., "Ux(0.1,0.045)", "Uy(...)", ..., "rho(...)").
+// Output postProcessing/<name>/<startTime>/<name>.dat (units in the header's second line: Pa,
+// m/s, kg/m^3, ...; "?" for a model's internal field): one row per sample, columns field-major
+// ("p(0.1,0.045)", ..., "Ux(0.1,0.045)", "Uy(...)", ..., "rho(...)"); a row is written at the
+// start time too.
 #include "FunctionObjectSupport.hpp"
 #include "Log.hpp"
 #include "Plugin.hpp"
@@ -48,10 +50,11 @@ public:
     void start(const Scene& s, double startTime) override {
         fields_.clear();
         const ParticleSet& set = select(s).particles;
-        std::vector<std::string> columns;
+        std::vector<PostProcessingColumn> columns;
         for (const auto& f : fieldNames_) {
             Field field;
             field.name = f;
+            field.unit = unitOf(f);
             if (f == "pressure" || f == "density" || set.findScalar(f)) {
                 field.vector = false;
                 field.label = f == "pressure" ? "p" : f == "density" ? "rho" : f;
@@ -69,12 +72,13 @@ public:
         }
         for (const auto& f : fields_)
             for (const auto& p : locations_) {
-                if (!f.vector) columns.push_back(columnLabel(f.label, p, dim_));
+                if (!f.vector) columns.push_back({columnLabel(f.label, p, dim_), f.unit});
                 else
-                    for (int a = 0; a < dim_; ++a) columns.push_back(columnLabel(f.label + "xyz"[a], p, dim_));
+                    for (int a = 0; a < dim_; ++a) columns.push_back({columnLabel(f.label + "xyz"[a], p, dim_), f.unit});
             }
         open(s, startTime, columns);
         warnOfLocationsOutside(s);
+        sample(s, false);
     }
 
 private:
@@ -140,8 +144,23 @@ private:
         }
     }
 
+    // The unit of a fluid field for the header; "?" for a model's internal field of no fixed unit.
+    std::string unitOf(const std::string& field) const {
+        const std::string mass = massUnit(dim_), volume = dim_ == 3 ? "m^3" : "m^2";
+        if (field == "pressure") return "Pa";
+        if (field == "density") return "kg/m^3";
+        if (field == "velocity" || field == "shiftingVelocity" || field == "viscousVelocity") return "m/s";
+        if (field == "acceleration") return "m/s^2";
+        if (field == "densityRate") return "kg/m^3/s";
+        if (field == "densityGradient") return "kg/m^4";
+        if (field == "vorticity") return "1/s";
+        if (field == "surfaceNormal" || field == "shiftingZone") return "-";
+        if (field == "wallMass") return mass;
+        return "?";
+    }
+
     struct Field {
-        std::string name, label;
+        std::string name, label, unit;
         bool vector = false;
     };
     std::vector<std::string> fieldNames_;

@@ -6,7 +6,7 @@
 // postProcessing/<name>/<startTime>/solverPerformanceSummary.dat and to the log:
 //   steps  averageIterations  maxIterations  notConverged  maxDensityError  averageDensityError
 // (maxDensityError: the largest per-step value; averageDensityError: the mean of the per-step
-// averages). With an explicit pressure model there are no rows: it says so in the log and
+// averages; both in % of ρ0, as the solver measures its own convergence). With an explicit pressure model there are no rows: it says so in the log and
 // writes nothing.
 //
 //   solverPerformance { type solverPerformance; }
@@ -53,14 +53,18 @@ public:
         }
         const double average = steps ? iterations / double(steps) : 0.0;
         PostProcessingFile summary(caseDir_, name_, startTime_,
-                                   {"steps", "averageIterations", "maxIterations", "notConverged",
-                                    "maxDensityError", "averageDensityError"},
+                                   {{"steps", "-"},
+                                    {"averageIterations", "-"},
+                                    {"maxIterations", "-"},
+                                    {"notConverged", "-"},
+                                    {"maxDensityError", "%"},
+                                    {"averageDensityError", "%"}},
                                    "solverPerformanceSummary");
         summary.writeRow(s.time, {double(steps), average, maxIterations, double(notConverged), maxError,
                                       steps ? avgError / double(steps) : 0.0});
         std::ostringstream o;
         o << "solverPerformance '" << name_ << "': " << steps << " steps, " << average << " iterations on average (max "
-          << maxIterations << "), " << notConverged << " not converged, max density error " << 100 * maxError << "%";
+          << maxIterations << "), " << notConverged << " not converged, max density error " << maxError << "%";
         log::info(o.str());
     }
 

@@ -17,7 +17,7 @@
 //   }
 //
 // Output postProcessing/<name>/<startTime>/<name>.dat: Time, front, and the front particle's
-// coordinates. A row is written at the start time too.
+// coordinates (m). A row is written at the start time too.
 #include "FunctionObjectSupport.hpp"
 #include "Plugin.hpp"
 
@@ -47,8 +47,8 @@ public:
     }
 
     void start(const Scene& s, double startTime) override {
-        const std::vector<std::string> columns =
-            dim_ == 3 ? std::vector<std::string>{"front", "x", "y", "z"} : std::vector<std::string>{"front", "x", "y"};
+        std::vector<PostProcessingColumn> columns{{"front", "m"}, {"x", "m"}, {"y", "m"}};
+        if (dim_ == 3) columns.push_back({"z", "m"});
         open(s, startTime, columns);
         sample(s, false);
     }

@@ -14,7 +14,7 @@
 //       writeControl    timeStep;  writeInterval 10;
 //   }
 //
-// Output postProcessing/<name>/<startTime>/<name>.dat: one column "level(x,y)" per gauge; a
+// Output postProcessing/<name>/<startTime>/<name>.dat: one column "level(x,y)" per gauge (m); a
 // row is written at the start time too.
 #include "FunctionObjectSupport.hpp"
 #include "Plugin.hpp"
@@ -42,8 +42,8 @@ public:
     }
 
     void start(const Scene& s, double startTime) override {
-        std::vector<std::string> columns;
-        for (const auto& p : gauges_) columns.push_back(columnLabel("level", p, dim_));
+        std::vector<PostProcessingColumn> columns;
+        for (const auto& p : gauges_) columns.push_back({columnLabel("level", p, dim_), "m"});
         open(s, startTime, columns);
         sample(s, false);
     }

@@ -232,12 +232,16 @@ def main():
 
     ax = axes[2]
     ax.axvspan(*NOISE_WINDOW, color="0.9", label="noise window")
-    ax.plot(T, p_noise, "-", color="C0", lw=0.5, alpha=0.5, label="Spindrift, y = 0.16H (noise %.3f)" % sigma)
+    # both probes named in metres and in H: "0.16H" (0.096 m) and P4's "0.16 m" (0.27H) read alike
+    ax.plot(T, p_noise, "-", color="C0", lw=0.5, alpha=0.5,
+            label="Spindrift, y = %.3f m = %.2fH (issue 18's probe; noise %.3f)" % (y_noise, y_noise / H, sigma))
     ax.plot(T, smooth_noise, "-", color="C0", lw=1.5, label="  5 ms running mean")
-    ax.plot(T, p_p4, "-", color="C2", lw=0.5, alpha=0.5, label="Spindrift, y = 0.16 m (noise %.3f)" % sigma_p4)
+    ax.plot(T, p_p4, "-", color="C2", lw=0.5, alpha=0.5,
+            label="Spindrift at P4, y = %.3f m = %.2fH (noise %.3f)" % (y_p4, y_p4 / H, sigma_p4))
     ax.plot(T, smooth_p4, "-", color="C2", lw=1.5, label="  5 ms running mean")
     if ref_p4[0].size:
-        ax.plot(ref_p4[0], ref_p4[1], "-", color="C3", lw=1.2, label="De Courcy et al. 2024, P4 (y = 0.16 m)")
+        ax.plot(ref_p4[0], ref_p4[1], "-", color="C3", lw=1.2,
+                label="De Courcy et al. 2024, P4 (y = 0.160 m = %.2fH)" % (P4_HEIGHT / H))
     ax.set_xlim(2, max(end, 3))
     ax.set_ylim(-0.3, 2.0)
     ax.set_xlabel("$T = t\\sqrt{g/H}$")

@@ -80,12 +80,22 @@ def main():
     x, u = sv.read_vtp(os.path.join(d_last, "fluid.vtp"))
     s = np.sqrt(u[:, 0] ** 2 + u[:, 1] ** 2)
     sc = c.scatter(x[:, 0], x[:, 1], c=s, s=5, cmap="viridis", rasterized=True)
-    c.quiver(x[::3, 0], x[::3, 1], u[::3, 0], u[::3, 1], scale=12 * np.exp(b * t_last), width=0.003)
+    # arrows: the particles' mean velocity in cells of about 16 particles, at most 16 x 16 of them
+    # (one arrow per particle would hide the particles)
+    cells = max(4, min(16, int(np.sqrt(len(x)) / 4)))
+    lo, hi = x[:, :2].min(axis=0), x[:, :2].max(axis=0)
+    k = np.clip(((x[:, :2] - lo) / (hi - lo + 1e-12) * cells).astype(int), 0, cells - 1)
+    cell = k[:, 0] * cells + k[:, 1]
+    count = np.bincount(cell, minlength=cells * cells)
+    filled = count > 0
+    mean = [np.bincount(cell, weights=w, minlength=cells * cells)[filled] / count[filled]
+            for w in (x[:, 0], x[:, 1], u[:, 0], u[:, 1])]
+    c.quiver(*mean, scale=12 * np.exp(b * t_last), width=0.004, color="w", edgecolor="k", linewidth=0.4)
     c.set_aspect("equal")
     c.set_xlabel("x [m]")
     c.set_ylabel("y [m]")
-    c.set_title("particles at t = %g s (colour: speed, arrows: velocity); L2 error %.3f" % (t_last, errors[-1][1]),
-                fontsize=10)
+    c.set_title("t = %g s: particles (colour: speed), arrows: mean velocity\nof %d x %d cells; L2 error %.3f"
+                % (t_last, cells, cells, errors[-1][1]), fontsize=10)
     fig.colorbar(sc, ax=c, label="particle speed |u| [m/s]")
     fig.tight_layout()
     print("Plot: " + sv.save(fig, "taylorGreen2D.png"))
