@@ -29,6 +29,14 @@ Figures:
   wallPenetration  the furthest any fluid particle centre got beyond a wall face (floor, left or
                    far wall) over the run, in dx (fieldStats' bounding box; 0 if none did), and
                    lostParticles: the fluid particles the run lost
+  p4Mean, p4MeanRef  mean p/(rho0 g H) at P4 (y = 0.16 m) over 3 <= T <= 5, and De Courcy et al.'s
+                   (their binned curve averaged over the same window: 0.33)
+  pressureOscillation  standard deviation over 5 <= T <= 6 of the 5 ms running mean of p/(rho0 g H)
+                   about its 50 ms running mean, at the probe nearest y = 0.16H: an oscillation of
+                   5-50 ms (issue 35's numerical oscillation of 20-26 steps; nan before T = 6)
+  minPairDistance  the closest two fluid particles came over the run, in dx (fieldStats)
+  maxDensityError  the largest compression (rho - rho0)/rho0 of the run, in % (the log's End line,
+                   every step; else fieldStats' samples)
 """
 import os
 import re
@@ -45,6 +53,8 @@ except ImportError as e:
     sys.exit("%s: %s: set SPINDRIFT_DIR to Spindrift's directory (source its etc/bashrc)" % (sys.argv[0], e))
 
 NOISE_WINDOW = (3.0, 5.0)   # T; also the window of the pressure errors against the reference
+OSCILLATION_WINDOW = (5.0, 6.0)   # T: pressureOscillation
+SLOW_MEAN = 50e-3           # s, the running mean the oscillation is measured about
 EARLY_WINDOW = (2.8, 3.0)   # T: p1Early, reached by the quick run (T <= 3)
 ONSET = 0.5                 # p/(rho0 g H) at P1 that marks the impact (pressureOnset)
 RUNNING_MEAN = 5e-3         # s, the width of the centred running mean
@@ -133,6 +143,16 @@ def wall_penetration(L, dx):
     return max(0.0, float(beyond.max())) / dx, lost
 
 
+def max_density_error():
+    """The largest compression of the run in %: the log's End line (every step), else fieldStats'."""
+    for log in ("log.spindrift",):
+        if os.path.exists(log):
+            m = re.search(r"max density error ([0-9.eE+-]+)%", open(log).read())
+            if m:
+                return float(m.group(1))
+    return 100 * max(0.0, float(sv.read_dat("stats")["rhoErrMax"].max()))
+
+
 def main():
     props = sv.fluid_properties()
     g, dx, rho0 = abs(props["gravity"][1]), props["particleSpacing"], props["rho0"]
@@ -191,6 +211,22 @@ def main():
     penetration, lost = wall_penetration(L, dx)
     print("Figure: wallPenetration = %.3f (dx: the furthest a fluid particle centre got beyond a wall face)" % penetration)
     print("Figure: lostParticles = %d" % lost)
+    inside = (T >= NOISE_WINDOW[0]) & (T <= NOISE_WINDOW[1])
+    p4_mean = float(p_p4[inside].mean()) if T[-1] >= NOISE_WINDOW[1] else np.nan
+    Tb4, pb4 = binned(*ref_p4)
+    ref4 = (Tb4 >= NOISE_WINDOW[0]) & (Tb4 <= NOISE_WINDOW[1])
+    p4_ref = float(pb4[ref4].mean()) if ref4.any() else np.nan
+    print("Figure: p4Mean = %.3f (mean p/rho0gH at y = %.3f m, %g <= T <= %g)" % (p4_mean, y_p4, *NOISE_WINDOW))
+    print("Figure: p4MeanRef = %.3f (De Courcy et al. 2024, the same window)" % p4_ref)
+    slow = running_mean(t, smooth_noise, SLOW_MEAN)
+    inside = (T >= OSCILLATION_WINDOW[0]) & (T <= OSCILLATION_WINDOW[1])
+    oscillation = float(np.std((smooth_noise - slow)[inside])) if T[-1] >= OSCILLATION_WINDOW[1] else np.nan
+    print("Figure: pressureOscillation = %.4f (std of the 5 ms running mean of p/rho0gH about its 50 ms running "
+          "mean, %g <= T <= %g, y = %.3f m)" % (oscillation, *OSCILLATION_WINDOW, y_noise))
+    stats = sv.read_dat("stats")
+    print("Figure: minPairDistance = %.3f (dx: the closest two fluid particles came, T <= %.3g)"
+          % (float(np.nanmin(stats["minPairDistance"])) / dx, stats.time[-1] * scale_t))
+    print("Figure: maxDensityError = %.3f (%%: the largest compression of the run)" % max_density_error())
 
     if not sv.plot_requested():
         return
