@@ -99,15 +99,33 @@ def clone(source, target):
         (shutil.copytree if os.path.isdir(src) else shutil.copy)(src, os.path.join(target, name))
 
 
+SOLUTION = ""  # --solution: entries added to sphSolution's pressure block
+PRESSURE = ""  # --pressure: entries added to the swapped pressure block
+
+
 def swap_pressure_block(case, solver):
     """The case's `pressure { }` replaced by damBreak2D's entry, and damBreak2D's sphSolution."""
     path = os.path.join(case, "system", "sphSchemes")
     text = open(path).read()
     s, e = block(text, "pressure")
-    text = text[:s] + "pressure\n{" + solver_entry(solver) + "}" + text[e:]
+    text = text[:s] + "pressure\n{" + solver_entry(solver) + ("    " + PRESSURE + "\n" if PRESSURE else "") + "}" + text[e:]
     open(path, "w").write(text)
-    shutil.copy(os.path.join(ROOT, "tutorials", "damBreak2D", "system", "sphSolution"),
-                os.path.join(case, "system", "sphSolution"))
+    path = os.path.join(case, "system", "sphSolution")
+    shutil.copy(os.path.join(ROOT, "tutorials", "damBreak2D", "system", "sphSolution"), path)
+    if SOLUTION:
+        text = open(path).read()
+        s, e = block(text, "pressure")
+        open(path, "w").write(text[:e - 1] + "    " + SOLUTION + "\n}" + text[e:])
+
+
+def add_options(case, name, options):
+    """'options' (dictionary text) added to the top-level block 'name' of system/sphSchemes."""
+    if not options:
+        return
+    path = os.path.join(case, "system", "sphSchemes")
+    text = open(path).read()
+    s, e = block(text, name)
+    open(path, "w").write(text[:e - 1] + "    " + options + "\n}" + text[e:])
 
 
 def add_function(case, text):
@@ -171,6 +189,9 @@ def colagrossi(solver, args):
         set_keyword(os.path.join(case, "system", "controlDict"), "endTime", "%g" % (args.endT / SQRT_G_OVER_H))
         if solver != "wcsph":
             swap_pressure_block(case, solver)
+        add_options(case, "boundary", args.boundary)
+        if args.schemes:
+            open(os.path.join(case, "system", "sphSchemes"), "a").write("\n" + args.schemes + "\n")
     ok = run(case, args.spindrift, args.threads)
     row = end_line(case)
     if ok:
@@ -185,6 +206,7 @@ def tank(solver, args):
         clone(os.path.join(HERE, "hydrostaticTank2D"), case)
         if solver != "wcsph":
             swap_pressure_block(case, solver)
+        add_options(case, "boundary", args.boundary)
     ok = run(case, args.spindrift, args.threads)
     row = end_line(case)
     if not ok:
@@ -228,6 +250,7 @@ def dam_break(solver, args, obstacle):
         set_keyword(os.path.join(case, "system", "controlDict"), "endTime", "%g" % args.damBreakEnd)
         set_keyword(os.path.join(case, "system", "controlDict"), "writeInterval", "0.005")
         add_function(case, "    stats { type fieldStats; writeControl timeStep; writeInterval 1; }")
+        add_options(case, "boundary", args.boundary)
         if obstacle:
             geo = os.path.join(case, "constant", "geometry")
             g = open(geo).read()
@@ -246,7 +269,7 @@ def dam_break(solver, args, obstacle):
     beyond = np.concatenate([lo[0] - stats["xMin"], stats["xMax"] - hi[0], lo[1] - stats["yMin"]])
     row["penetration"] = max(0.0, float(beyond.max())) / dx
     row["minPair"] = float(np.nanmin(stats["minPairDistance"])) / dx
-    row["rhoErrMax"] = 100 * float(stats["rhoErrMax"].max())
+    row["rhoErrMax"] = float(stats["rhoErrMax"].max())  # fieldStats: in %
     times = sv.written_times(case)
     x, _ = sv.read_vtp(os.path.join(case, times[-1][1], "fluid.vtp"), "pressure")
     near = x[:, 1] < lo[1] + 1.5 * dx
@@ -281,11 +304,17 @@ def main():
     ap.add_argument("--res", "-res", type=int, default=40)
     ap.add_argument("--endT", "-endT", type=float, default=7.0)
     ap.add_argument("--damBreakEnd", "-damBreakEnd", type=float, default=0.3)
+    ap.add_argument("--boundary", "-boundary", default="", help="entries added to the boundary block, e.g. 'contactDistance 0;'")
+    ap.add_argument("--schemes", "-schemes", default="", help="text appended to system/sphSchemes (colagrossi), e.g. 'shifting { type deltaPlus; }'")
+    ap.add_argument("--solution", "-solution", default="", help="entries added to sphSolution's pressure block")
+    ap.add_argument("--pressure", "-pressure", default="", help="entries added to the swapped pressure block")
     ap.add_argument("--threads", "-threads", type=int, default=1)
     ap.add_argument("--jobs", "-jobs", type=int, default=1)
     ap.add_argument("--work", "-work", default="solverTargets")
     ap.add_argument("--spindrift", "-spindrift", default=shutil.which("spindrift") or os.path.join(ROOT, "build", "bin", "spindrift"))
     args = ap.parse_args()
+    global SOLUTION, PRESSURE
+    SOLUTION, PRESSURE = args.solution, args.pressure
     args.work = os.path.abspath(args.work)
     os.makedirs(args.work, exist_ok=True)
     solvers = args.solvers.split(",")

@@ -150,7 +150,7 @@ def max_density_error():
             m = re.search(r"max density error ([0-9.eE+-]+)%", open(log).read())
             if m:
                 return float(m.group(1))
-    return 100 * max(0.0, float(sv.read_dat("stats")["rhoErrMax"].max()))
+    return max(0.0, float(sv.read_dat("stats")["rhoErrMax"].max()))  # fieldStats: in %
 
 
 def main():
