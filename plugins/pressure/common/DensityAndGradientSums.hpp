@@ -60,6 +60,22 @@ struct FluidDivergenceTerm {
     void cached(const Vec3& ui, Index j, const Vec3& gradW, Sum& sum) const { sum += (ui - u[j]).dot(gradW); }
 };
 
+// Σ_b M_b p_b/ρ_b² ∇W_ib over the boundaries with a pressure of their own (adami: extrapolated
+// from the fluid's), the boundaries alone: their push, which iisph and dfsph take again whenever
+// the core has carried a new fluid pressure to them (StepServices::updateBoundaryPressure).
+struct OwnWallPressureTerm {
+    using Sum = Vec3;
+    static constexpr bool usesGradient = true;
+    static constexpr bool visitsFluid = false;
+    struct Particle {};
+    Particle particle(std::size_t) const { return {}; }
+    void wall(const Particle&, const WallPair& q, Sum& sum) const {
+        if (q.src.mirrored) return;
+        const Scalar rho = q.src.rho[q.j];
+        sum += (q.mass() * q.src.p[q.j] / (rho * rho)) * q.gradW;
+    }
+};
+
 // Σ_j (s_i + s_j) ∇W_ij over the cached gradients, for any per-particle scalar s (p/ρ²: the
 // symmetric pressure gradient over m; dfsph's κ/ρ: its stiffness step).
 struct CachedSymmetricGradientTerm {

@@ -5,10 +5,17 @@
 //   α_i = ρ_i / (|Σ_j m ∇W_ij + Σ_b M_b ∇W_ib|² + Σ_j |m ∇W_ij|²)                 (eq. 8)
 // and the rate of density change Dρ_i/Dt = Σ_j m (v_i − v_j)·∇W_ij + Σ_b M_b v_i·∇W_ib (walls at rest).
 // A stiffness κ_i (= p_i/ρ_i) changes the velocities by
-//   v_i −= Δt [Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + Σ_b M_b κ_i/ρ_i ∇W_ib]
-// (the wall term once, as SPlisHSPlasH: the fluid column stays calm, but the pressure p = ρκ of
-// the particles touching a wall is about twice the physical one; mirroring κ_b = κ_i instead,
-// as the other solvers mirror p, gave the right wall pressure but a restless column).
+//   v_i −= Δt [Σ_j m (κ_i/ρ_i + κ_j/ρ_j) ∇W_ij + Σ_b M_b (κ_i/ρ_i + p_b/ρ_b²) ∇W_ib]
+// with p_b the pressure of a boundary of its own pressure (adami), which the boundary model
+// extrapolates from the fluid's pressure of the step so far, p = ρ(κ + κ^v), after every
+// correction (Adami, Hu & Adams 2012, eq. 27, hydrostatic term included; carried into DFSPH as
+// Band et al. 2018 carry boundary pressure into IISPH: "Pressure boundaries for implicit
+// incompressible SPH", ACM Trans. Graph. 37(2) 14, doi:10.1145/3180486). On a boundary that
+// mirrors the fluid (akinci) p_b/ρ_b² is left out: the wall term once, as SPlisHSPlasH. Once on
+// adami walls, the row beside a wall was pushed into it by its own κ through its fluid pairs and
+// held only by the same κ once through the wall: it sank to 0.27Δx from the face (0.5Δx at rest)
+// with an empty band above it, at twice the physical pressure (the hydrostatic tank's bottom
+// probe +5.9 %, the Colagrossi far wall's P4 0.69 against 0.33 ρ0gH, issue 35).
 //   1. divergence solve (Alg. 2, run here at the start of the step, after the neighbour
 //      search, with the new ρ and α): κ_i = max(Dρ_i/Dt, 0) α_i / Δt until the average
 //      Δt·Dρ/Dt/ρ0 ≤ maxDivergenceError; particles with few neighbours (free surface) are left
@@ -144,6 +151,12 @@ public:
         const Scalar invDt = 1 / dt, invDt2 = invDt * invDt, relaxPerDt = relaxation_ * invDt, relaxPerDt2 = relaxation_ * invDt2;
         const Scalar* alphaOverRho = f.alphaOverRho->data();
         const auto& ff = lists.own();
+        ownPressureWalls_ = step.core.boundariesHaveOwnPressure(s);
+        linearisedAt_ = &fluid.particles.position();
+        if (ownPressureWalls_) {
+            appliedWallPush_.assign(n, Vec3::Zero());
+            totalPressure_.resize(n);
+        }
 
         // 1. divergence solve: remove the compressing part of the velocity field. Per iteration
         //    one pass for Dρ/Dt and the next κ/ρ, the average error, one pass for the velocities.
@@ -159,6 +172,7 @@ public:
             };
             if (warmStart_ > 0) densityRatePass(s, fluid, warmWhereCompressing, WarmStartRateTerm{{}, kv.data()});
             warmStartVelocities(s, fluid, kv, dt, invDt);
+            pushOfOwnPressureWalls(s, fluid, step, kv, nullptr);
             for (;;) {
                 densityRatePass(s, fluid, [&](std::size_t i, Scalar rate) {
                     const bool full = ff.count(i) + lists.otherNeighbourCount(i) >= minNeighbours_;
@@ -171,6 +185,7 @@ public:
                     (divergenceIterations >= 1 && error <= maxDivergenceError_))
                     break;
                 applyStiffness(s, fluid, dt, &kv);
+                pushOfOwnPressureWalls(s, fluid, step, kv, nullptr);
                 ++divergenceIterations;
             }
         }
@@ -191,6 +206,8 @@ public:
         baseDensity_.resize(n);
         forEachIndex(n, [&](std::size_t i) { baseDensity_[i] = rho[i] + (offset ? offset[i] : Scalar(0)); });
         warmStartVelocities(s, fluid, k, dt, invDt2);
+        std::vector<Scalar>* kv = divergenceSolve_ ? f.kappaV : nullptr;
+        pushOfOwnPressureWalls(s, fluid, step, k, kv);
         const auto stiffness = [&](std::size_t i, Scalar predicted) {
             rate_[i] = predicted;
             kappaOverRho_[i] = std::max(predicted - rho0_, Scalar(0)) * alphaOverRho[i] * relaxPerDt2;
@@ -211,6 +228,7 @@ public:
                     checkPassed(fluid) = 1; // the next evaluation's search and density
                     break;
                 }
+                linearisedAt_ = &nextPositions_;
                 densityRatePass(s, fluid, [&](std::size_t i, Scalar rate) { // Dρ/Dt(v*) about the checked positions
                     const Scalar real = next[i];
                     offset[i] += real - rate_[i];
@@ -219,34 +237,39 @@ public:
                 });
             }
             applyStiffness(s, fluid, dt, &k);
+            pushOfOwnPressureWalls(s, fluid, step, k, kv);
             ++iterations;
         }
 
-        auto& kv = *f.kappaV;
         forEachIndex(n, [&](std::size_t i) {
             a[i] = (velocity_[i] - v[i]) * invDt;
             // κ is p/ρ (eq. 9); the step's pressure acts in both solves: the divergence solve's
             // κ_v (the velocities' compressing part) and the density solve's κ — p from κ alone
             // read a still column 34 % low
-            p[i] = rho[i] * (k[i] + (divergenceSolve_ ? kv[i] : Scalar(0)));
+            p[i] = rho[i] * (k[i] + (kv ? (*kv)[i] : Scalar(0)));
             // kept for the next warm start as the step's velocity change per unit of κ's
             // gradient: κ_v Δt and κ Δt² (as SPlisHSPlasH), not κ, so a step of another Δt
             // starts from the same velocity change (a κ carried over from a step 2.5× shorter
             // applied 2.5× the push: the Colagrossi column's top shot up at 11 m/s while Δt grew)
             k[i] *= dt * dt;
-            if (divergenceSolve_) kv[i] *= dt;
+            if (kv) (*kv)[i] *= dt;
         });
         stats_ = {iterations, controls_.converged(err.max, err.avg), err.max, err.avg};
     }
 
-    // The wall term acts once, v_i −= Δt κ_i/ρ_i Σ_b M_b ∇W_ib over both solves, with the step's
-    // total κ = p/ρ: a_ib = −M_b (p_i/ρ_i²) ∇W_ib at the step's positions.
-    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step&, Reactions& r) const override {
+    // The wall term over both solves, with the step's total κ = p/ρ: on boundaries of their own
+    // pressure a_ib = −M_b (p_i/ρ_i² + p_b/ρ_b²) ∇W_ib, p_b extrapolated from the step's final
+    // pressure (the last correction's); on mirroring ones once, a_ib = −M_b (p_i/ρ_i²) ∇W_ib; at
+    // the step's positions.
+    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step& step, Reactions& r) const override {
         const auto& p = fluid.particles.pressure();
         const auto& rho = fluid.particles.density();
         pOverRho2_.resize(p.size());
         forEachIndex(p.size(), [&](std::size_t i) { pOverRho2_[i] = p[i] / (rho[i] * rho[i]); });
-        addOneSidedWallPressureReactions(s, fluid, fluid.particles.position(), pOverRho2_.data(), r);
+        if (step.core.boundariesHaveOwnPressure(s))
+            addSymmetricPressureReactions(s, fluid, fluid.particles.position(), pOverRho2_.data(), r);
+        else
+            addOneSidedWallPressureReactions(s, fluid, fluid.particles.position(), pOverRho2_.data(), r);
     }
 
     bool isIterative() const override { return true; }
@@ -351,6 +374,28 @@ private:
         });
     }
 
+    // Boundaries of their own pressure (adami): the core carries the fluid's pressure of the step
+    // so far, p_i = ρ_i (κ_i + κ^v_i) (the stiffness κ of the solve under way and, in the density
+    // solve, the divergence solve's κ^v), to the boundaries, and velocity_ takes the change of
+    // their push since the last call,
+    //   Δv_i = −Δt Δ[Σ_b M_b p_b/ρ_b² ∇W_ib],
+    // so that over the step the walls push with the pressure the fluid ends with: the symmetric
+    // term M_b (κ_i/ρ_i + p_b/ρ_b²) ∇W_ib (with applyStiffness's κ_i/ρ_i part), as pcisph and iisph
+    // apply it. p_b carries Adami's hydrostatic term, so the row beside a wall is held as the rows
+    // inside the fluid are.
+    void pushOfOwnPressureWalls(Scene& s, const ParticleSystem& fluid, const Step& step, const std::vector<Scalar>& kappa,
+                                const std::vector<Scalar>* other) {
+        if (!ownPressureWalls_) return;
+        const auto& rho = fluid.particles.density();
+        forEachIndex(kappa.size(), [&](std::size_t i) { totalPressure_[i] = rho[i] * (kappa[i] + (other ? (*other)[i] : Scalar(0))); });
+        step.core.updateBoundaryPressure(s, fluid, totalPressure_);
+        const Scalar dt = step.dt;
+        forEachPairSum(s, fluid, *linearisedAt_, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& push) {
+            velocity_[i] -= dt * (push - appliedWallPush_[i]);
+            appliedWallPush_[i] = push;
+        });
+    }
+
     // Applies warmStart × the last step's κ to velocity_ and keeps it as this step's start.
     // kappa holds the last step's κ Δt (divergence solve; perDt = 1/Δt) or κ Δt² (density solve;
     // perDt = 1/Δt²): the warm start is warmStart × that over this step's Δt.
@@ -376,6 +421,12 @@ private:
     std::vector<Scalar> rate_, kappaOverRho_;
     std::vector<Vec3> velocity_, nextVelocity_, nextPositions_;
     mutable std::vector<Scalar> pOverRho2_; // scratch of addReactions
+    // boundaries of their own pressure: the push Σ_b M_b p_b/ρ_b² ∇W_ib as applied so far in the
+    // step, the positions the solve linearises about, and the fluid pressure p_b is taken from
+    bool ownPressureWalls_ = false;
+    std::vector<Vec3> appliedWallPush_;
+    const std::vector<Vec3>* linearisedAt_ = nullptr;
+    std::vector<Scalar> totalPressure_;
     long checksTaken_ = 0, checksNotTaken_ = 0; // passed checks the next step took over, or not
     // the predicted density less Δt Dρ/Dt: ρ_i + δ_i, or about the positions of a failed check
     // ρ_i(x + Δt v*) − Δt Dρ_i/Dt(v*)

@@ -60,20 +60,6 @@
 namespace {
 using namespace spindrift;
 
-// Σ_b M_b p_b/ρ_b² ∇W_ib over the walls with their own pressure (the walls alone).
-struct OwnWallPressureTerm {
-    using Sum = Vec3;
-    static constexpr bool usesGradient = true;
-    static constexpr bool visitsFluid = false;
-    struct Particle {};
-    Particle particle(std::size_t) const { return {}; }
-    void wall(const Particle&, const WallPair& q, Sum& sum) const {
-        if (q.src.mirrored) return;
-        const Scalar rho = q.src.rho[q.j];
-        sum += (q.mass() * q.src.p[q.j] / (rho * rho)) * q.gradW;
-    }
-};
-
 // The solve's terms, over the cached gradients.
 // Σ_j (v_i − v_j)·∇W_ij and Σ_j (q_i + q_j) ∇W_ij: the advected density and the first
 // displacements in one pass.
