@@ -33,7 +33,7 @@
 // of the masses the boundary model gives them. Boundaries of their own pressure (adami) also push
 // with it: after every correction the core extrapolates p_b from the fluid's pressure of the
 // multiplier so far, p = −ρ0 λ/Δt² (Adami et al. 2012, eq. 27, with its hydrostatic term), and
-// the next correction moves each particle by the change of −Δt² Σ_b M_b p_b/ρ_b² ∇W_ib: over the
+// x* moves by the change of −Δt² Σ_b M_b p_b/ρ_b² ∇W_ib before the next density check: over the
 // step the wall acts with the symmetric term V_b (λ_i + λ_b) ∇W_ib, λ_b = −Δt² ρ0 p_b/ρ_b² (the
 // pressure force of §wcsph as a displacement; as Band et al. 2018 carry boundary pressure into
 // IISPH, doi:10.1145/3180486). With λ_i alone the row beside a wall sank to 0.3Δx from the face
@@ -152,7 +152,6 @@ public:
         ownPressureWalls_ = step.core.boundariesHaveOwnPressure(s);
         if (ownPressureWalls_) {
             appliedWallPush_.assign(n, Vec3::Zero());
-            wallStep_.assign(n, Vec3::Zero());
             wallPressure_.resize(n);
         }
         dt2_ = dt * dt;
@@ -172,7 +171,7 @@ public:
             positionCorrection(s, fluid, lambdaTotal_, false);
             applyCorrection(Scalar(1));
         }
-        updateWallPressure(s, fluid, step);
+        pushOfOwnPressureWalls(s, fluid, step);
 
         const Scalar relax = relaxation_;
         int iterations = 0;
@@ -181,12 +180,11 @@ public:
             constraintStep(s, fluid);
             err = compressionError(rhoPredicted_, rho0_);
             if (controls_.done(iterations, err.max, err.avg)) break;
-            positionCorrection(s, fluid, dLambda_, options_.sCorrK > 0 && iterations == 0, ownPressureWalls_);
+            positionCorrection(s, fluid, dLambda_, options_.sCorrK > 0 && iterations == 0);
             applyCorrection(relax, true);
-            updateWallPressure(s, fluid, step);
+            pushOfOwnPressureWalls(s, fluid, step);
             ++iterations;
         }
-        finishWallPush(s, fluid);
 
         const Scalar invDt2 = 1 / (dt * dt);
         forEachIndex(n, [&](std::size_t i) {
@@ -198,18 +196,23 @@ public:
     }
 
     // The wall part of the position correction as an acceleration, Σ_b (M_b/ρ0) λ_i ∇W_ib / Δt² =
-    // −Σ_b M_b (p_i/ρ0²) ∇W_ib with the step's total multiplier, and on boundaries of their own
-    // pressure −Σ_b M_b p_b/ρ_b² ∇W_ib with p_b of the final multiplier, at the converged
-    // positions x* (the iterations' own positions differ by their corrections).
+    // −Σ_b M_b (p_i/ρ0²) ∇W_ib with the step's total multiplier at the converged positions x* (the
+    // iterations' own positions differ by their corrections), and on boundaries of their own
+    // pressure −Σ_b M_b p_b/ρ_b² ∇W_ib with the final p_b, where its push was taken.
     void addReactions(const Scene& s, const ParticleSystem& fluid, Reactions& r) const {
         const auto& p = fluid.particles.pressure();
         pOverRho02_.resize(p.size());
         const Scalar inv = 1 / (rho0_ * rho0_);
         forEachIndex(p.size(), [&](std::size_t i) { pOverRho02_[i] = p[i] * inv; });
-        if (ownPressureWalls_)
-            addSymmetricPressureReactions(s, fluid, predicted_, pOverRho02_.data(), r);
-        else
-            addOneSidedWallPressureReactions(s, fluid, predicted_, pOverRho02_.data(), r);
+        addOneSidedWallPressureReactions(s, fluid, predicted_, pOverRho02_.data(), r);
+        if (ownPressureWalls_) {
+            const OwnWallPressureTerm own{};
+            spindrift::addReactions(s, fluid, pushedAt_, own, [&](std::size_t, const auto& pi, const WallPair& q) {
+                Vec3 push = Vec3::Zero();
+                own.wall(pi, q, push);
+                return Vec3(-push);
+            }, ForceKind::pressure, r);
+        }
     }
 
     const SolverStats& stats() const { return stats_; }
@@ -291,11 +294,10 @@ private:
         });
     }
 
-    // Σ_j (l_i + l_j + s_corr,ij) ∇W_ij over the fluid, Σ_b V_b l_i ∇W_ib over the walls, and
-    // (ownWalls) Σ_b M_b p_b/ρ_b² ∇W_ib over the boundaries of their own pressure.
+    // Σ_j (l_i + l_j + s_corr,ij) ∇W_ij over the fluid, Σ_b V_b l_i ∇W_ib over the walls.
     struct CorrectionTerm {
         struct Sum {
-            Vec3 fluid = Vec3::Zero(), wall = Vec3::Zero(), own = Vec3::Zero();
+            Vec3 fluid = Vec3::Zero(), wall = Vec3::Zero();
         };
         static constexpr bool usesGradient = true;
         using Particle = Scalar; // l_i
@@ -303,7 +305,6 @@ private:
         const Scalar* l;
         Scalar invRho0, k, invWq; // s_corr = −k (W/W(Δq))ⁿ (k = 0: none)
         int power;
-        bool ownWalls;
         Particle particle(std::size_t i) const { return l[i]; }
         void fluid(Scalar li, const Pair& q, Sum& sum) const {
             Scalar coeff = li + l[q.j];
@@ -315,57 +316,44 @@ private:
             }
             sum.fluid += coeff * q.gradW;
         }
-        void wall(Scalar li, const WallPair& q, Sum& sum) const {
-            sum.wall += (q.mass() * invRho0 * li) * q.gradW;
-            if (ownWalls) OwnWallPressureTerm{}.wall({}, q, sum.own);
-        }
+        void wall(Scalar li, const WallPair& q, Sum& sum) const { sum.wall += (q.mass() * invRho0 * li) * q.gradW; }
     };
 
-    // step_ = V Σ_j (l_i + l_j + s_corr) ∇W_ij + Σ_b V_b l_i ∇W_ib at the predicted positions; with
-    // ownWalls, wallStep_ = the change of −Δt² Σ_b M_b p_b/ρ_b² ∇W_ib since the last correction
-    // (the boundaries' pressure of the λ so far, updateWallPressure).
-    void positionCorrection(const Scene& s, const ParticleSystem& fluid, const std::vector<Scalar>& l, bool sCorr,
-                            bool ownWalls = false) {
-        const Scalar V = volume_, dt2 = dt2_;
+    // step_ = V Σ_j (l_i + l_j + s_corr) ∇W_ij + Σ_b V_b l_i ∇W_ib at the predicted positions.
+    void positionCorrection(const Scene& s, const ParticleSystem& fluid, const std::vector<Scalar>& l, bool sCorr) {
+        const Scalar V = volume_;
         const CorrectionTerm term{s.kernel, l.data(), 1 / rho0_, sCorr ? options_.sCorrK / d0_ : Scalar(0),
-                                  wDeltaQ_ > 0 ? 1 / wDeltaQ_ : 0, options_.sCorrN, ownWalls};
-        forEachPairSum(s, fluid, predicted_, term, [&](std::size_t i, const auto&, const auto& sum) {
-            step_[i] = V * sum.fluid + sum.wall;
-            if (ownWalls) {
-                wallStep_[i] = -dt2 * (sum.own - appliedWallPush_[i]);
-                appliedWallPush_[i] = sum.own;
-            }
-        });
+                                  wDeltaQ_ > 0 ? 1 / wDeltaQ_ : 0, options_.sCorrN};
+        forEachPairSum(s, fluid, predicted_, term,
+                       [&](std::size_t i, const auto&, const auto& sum) { step_[i] = V * sum.fluid + sum.wall; });
     }
 
     // Boundaries of their own pressure: p_b from the fluid's pressure of the multiplier so far,
-    // p = −ρ0 λ/Δt² (the core's updateBoundaryPressure; the next correction takes their push).
-    void updateWallPressure(Scene& s, const ParticleSystem& fluid, const Step& step) {
+    // p = −ρ0 λ/Δt² (the core's updateBoundaryPressure), and x* moves by the change of their push
+    // −Δt² Σ_b M_b p_b/ρ_b² ∇W_ib since the last call, before the density is checked again. So
+    // the boundaries push with the p_b of the final multiplier, which the reactions read, at the
+    // positions it was taken (pushedAt_). (Its push taken with the next correction instead left
+    // the last p_b unapplied: the tank's reported force was 11 % above the water's momentum
+    // change, pbf in TankForce; applied after the last check, relaxedPbf's still column ended
+    // above η.)
+    void pushOfOwnPressureWalls(Scene& s, const ParticleSystem& fluid, const Step& step) {
         if (!ownPressureWalls_) return;
-        const Scalar scale = -rho0_ / dt2_;
+        const Scalar scale = -rho0_ / dt2_, dt2 = dt2_;
         forEachIndex(wallPressure_.size(), [&](std::size_t i) { wallPressure_[i] = scale * lambdaTotal_[i]; });
         step.core.updateBoundaryPressure(s, fluid, wallPressure_);
-    }
-
-    // The boundaries' push of the final multiplier's p_b (the last correction's p_b is taken by no
-    // further correction): without it the wall acted with the p_b of one correction before, and the
-    // tank's reported force, from the final p_b, missed the water's momentum by 11 % (pbf).
-    // It moves the particles (correction_), not x*, where the reactions take the push again.
-    void finishWallPush(const Scene& s, const ParticleSystem& fluid) {
-        if (!ownPressureWalls_) return;
-        const Scalar dt2 = dt2_;
-        forEachPairSum(s, fluid, predicted_, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& push) {
-            correction_[i] -= dt2 * (push - appliedWallPush_[i]); // (x* stays where the push was taken: the reactions')
+        pushedAt_ = predicted_;
+        forEachPairSum(s, fluid, pushedAt_, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& push) {
+            const Vec3 d = -dt2 * (push - appliedWallPush_[i]);
+            predicted_[i] += d;
+            correction_[i] += d;
             appliedWallPush_[i] = push;
         });
     }
 
-    // x* += factor · step (+ the boundaries' step, unscaled), and (accumulateLambda) λ += factor ·
-    // Δλ, in one pass.
+    // x* += factor · step, and (accumulateLambda) λ += factor · Δλ, in one pass.
     void applyCorrection(Scalar factor, bool accumulateLambda = false) {
-        const bool walls = accumulateLambda && ownPressureWalls_;
         forEachIndex(predicted_.size(), [&](std::size_t i) {
-            const Vec3 d = factor * step_[i] + (walls ? wallStep_[i] : Vec3::Zero());
+            const Vec3 d = factor * step_[i];
             predicted_[i] += d;
             correction_[i] += d;
             if (accumulateLambda) lambdaTotal_[i] += factor * dLambda_[i];
@@ -381,10 +369,10 @@ private:
     // each fluid's time of its last solve (the warm start's source is taken once a time)
     std::map<std::string, double> lastSolveTime_;
     std::vector<Vec3> predicted_, correction_, step_;
-    // boundaries of their own pressure: their push as applied so far, this correction's change of
-    // it, the fluid pressure −ρ0 λ/Δt² they extrapolate from, Δt²
+    // boundaries of their own pressure: their push as applied so far and where it was last taken,
+    // the fluid pressure −ρ0 λ/Δt² they extrapolate from, Δt²
     bool ownPressureWalls_ = false;
-    std::vector<Vec3> appliedWallPush_, wallStep_;
+    std::vector<Vec3> appliedWallPush_, pushedAt_;
     std::vector<Scalar> wallPressure_;
     Scalar dt2_ = 0;
     std::vector<Scalar> lambdaTotal_, dLambda_, rhoPredicted_; // λ of this solve, its increment, ρ*
