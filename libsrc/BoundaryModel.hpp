@@ -5,7 +5,11 @@
 // update() runs at every evaluation once the fluids' density and pressure are known (after
 // computeDensity), e.g. to extrapolate the boundaries' pressure; a pressure solver that changes
 // a fluid's pressure in its iterations has the core carry the change to the boundaries
-// (StepServices::updateBoundaryPressure, which calls updatePressure).
+// (StepServices::updateBoundaryPressure, which calls updatePressure). correctAcceleration() runs
+// after the pressure model, when a fluid's accelerations are complete: a model that keeps fluid
+// particles out of its boundaries by contact (adami) changes the accelerations of those the step
+// would carry into them, and reports the force that change puts on each boundary
+// (addReactions, right after it, when something wants the reactions).
 #pragma once
 
 #include "Model.hpp"
@@ -19,6 +23,8 @@ public:
     virtual void update(Scene&, const Step&) {}
     // The boundaries' own pressure from pressure p of 'fluid' (no-op for mirrored boundaries).
     virtual void updatePressure(Scene&, const ParticleSystem& /*fluid*/, const std::vector<Scalar>& /*p*/) {}
+    virtual void correctAcceleration(Scene&, ParticleSystem& /*fluid*/, const Step&) {}
+    virtual void addReactions(const Scene&, const ParticleSystem& /*fluid*/, const Step&, Reactions&) const {}
 };
 
 } // namespace spindrift

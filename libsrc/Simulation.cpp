@@ -1053,6 +1053,8 @@ void Simulation::evaluate(double time, Scalar dt) {
         }
         pressure_->addPressureAcceleration(s, *f, step);
         if (wantReactions) pressure_->addReactions(s, *f, step, reactions);
+        if (boundaryModel_) boundaryModel_->correctAcceleration(s, *f, step);
+        if (boundaryModel_ && wantReactions) boundaryModel_->addReactions(s, *f, step, reactions);
         if (shifting_) shifting_->computeShift(s, *f, step);
         if (shifting_ && wantReactions) shifting_->addReactions(s, *f, step, reactions);
     }
