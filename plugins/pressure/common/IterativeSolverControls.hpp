@@ -5,14 +5,19 @@
 //   {
 //       maxDensityError   0.01;      // η: stop when the density error is at most this
 //       densityErrorNorm  maximum;   // maximum | average: which error is held below η
+//       peakDensityError  0.01;      // and the largest error of any particle at most this
 //       minIterations     3;
 //       maxIterations     100;       // stop here even if not converged (the log says so)
 //   }
 //
 // The density error of a particle is the compression max(0, ρ* − ρ0)/ρ0 of its predicted
 // density (the deficit at a free surface is not an error of the pressure solver); 'maximum'
-// and 'average' are taken over all fluid particles. A missing sphSolution or keyword falls back
-// to the solver's defaults, echoed once in the log. Unknown keywords are errors.
+// and 'average' are taken over all fluid particles. With the average, the peak is held as well
+// (peakDensityError, 1 % by default): an average alone let a few particles go uncorrected while
+// it was met in two iterations (the Colagrossi dam break at H/80: dfsph's largest error 5.6 %,
+// iisph's 3.9 %, relaxedPbf's 3.1 %, at 2.0-3.3 iterations a step on average; issue 35). A
+// missing sphSolution or keyword falls back to the solver's defaults, echoed once in the log.
+// Unknown keywords are errors.
 #pragma once
 
 #include "Dictionary.hpp"
@@ -29,6 +34,7 @@ struct IterativeSolverControls {
     Norm norm = Norm::Maximum;
     int minIterations = 3;
     int maxIterations = 100;
+    Scalar peakDensityError = Scalar(0.01); // the largest error allowed whatever the norm
 
     // 'solution' is sphSolution's `pressure` sub-dictionary (may be nullptr); the current
     // members are the defaults.
@@ -42,9 +48,12 @@ struct IterativeSolverControls {
                        : Norm::Average;
             minIterations = d.getOrDefault<int>("minIterations", minIterations);
             maxIterations = d.getOrDefault<int>("maxIterations", maxIterations);
+            peakDensityError = d.getOrDefault<double>("peakDensityError", peakDensityError);
             if (!(maxDensityError >= 0))
                 throw InputError(d.locationOf("maxDensityError"), "maxDensityError must not be negative",
                                  "maxDensityError");
+            if (!(peakDensityError > 0))
+                throw InputError(d.locationOf("peakDensityError"), "peakDensityError must be positive", "peakDensityError");
             if (minIterations < 0)
                 throw InputError(d.locationOf("minIterations"), "minIterations must not be negative", "minIterations");
             if (maxIterations < 1 || maxIterations < minIterations)
@@ -56,6 +65,9 @@ struct IterativeSolverControls {
             eta << maxDensityError;
             logDefaultOnce("sphSolution.pressure.maxDensityError", eta.str());
             logDefaultOnce("sphSolution.pressure.densityErrorNorm", normDefault);
+            std::ostringstream peak;
+            peak << peakDensityError;
+            logDefaultOnce("sphSolution.pressure.peakDensityError", peak.str());
             logDefaultOnce("sphSolution.pressure.minIterations", std::to_string(minIterations));
             logDefaultOnce("sphSolution.pressure.maxIterations", std::to_string(maxIterations));
         }
@@ -66,10 +78,10 @@ struct IterativeSolverControls {
     // After 'iterations' corrections with the given predicted errors: stop correcting?
     bool done(int iterations, Scalar maxError, Scalar avgError) const {
         if (iterations >= maxIterations) return true;
-        return iterations >= minIterations && error(maxError, avgError) <= maxDensityError;
+        return iterations >= minIterations && converged(maxError, avgError);
     }
     bool converged(Scalar maxError, Scalar avgError) const {
-        return error(maxError, avgError) <= maxDensityError;
+        return error(maxError, avgError) <= maxDensityError && maxError <= peakDensityError;
     }
 };
 
