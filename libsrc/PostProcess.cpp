@@ -39,6 +39,7 @@ void Simulation::loadWrittenTime(double time, const std::string& timeName) {
     }
     restorePassiveSystems(dir);
     if (fs::exists(dir / "uniform/bodies")) readBodies(dir);
+    ++scene_.stateVersion; // another state: what was sampled of the last one is stale
     updateLists(scene_.time);
 }
 

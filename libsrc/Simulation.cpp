@@ -939,6 +939,7 @@ bool Simulation::restartFromLatest() {
         if (auto* mine = fluid.findVector(f->name)) *mine = f->data;
     fluid.position() = saved->position();
     restorePassiveSystems(case_.dir / name);
+    ++scene_.stateVersion;
     // exact time, step index and last Δt
     scene_.time = timeDict->get<double>("value");
     scene_.step = timeDict->get<long>("index");

@@ -21,9 +21,15 @@ checks (each optional; a failed one prints why and the script exits 1):
                             particle centres (a moving wall: its own file at every time)
   --still-bottom TOL SPEED  (a tank at rest) the bottom row's mean pressure within TOL of
                             rho0 g H and the largest speed below SPEED at the last time
+  --floats BODY FROM TOL    (2D) the box body BODY (constant/geometry bodies, its density) floats
+                            at Archimedes' draft: its centre of mass, averaged over the times
+                            from FROM on (its heave), within TOL [m] of the still level of the
+                            tank's water with the body's displacement, less the draft
+                            rho_b/rho0 h, plus h/2; upright (tilt < 2 degrees) at every time
 """
 import argparse
 import os
+import re
 import sys
 
 import numpy as np
@@ -53,6 +59,7 @@ def main():
     ap.add_argument("--rise", type=float)
     ap.add_argument("--outside-of")
     ap.add_argument("--still-bottom", nargs=2, type=float, metavar=("TOL", "SPEED"))
+    ap.add_argument("--floats", nargs=3, metavar=("BODY", "FROM", "TOL"))
     args = ap.parse_args()
     case = args.case
 
@@ -191,6 +198,35 @@ def main():
         check(abs(err) <= tol and vmax <= speed,
               "t = %g: bottom row's pressure %+.2f %% of rho0 g H off rho0 g (H - z) (bound %.1f %%), "
               "max speed %.3g m/s (bound %g)" % (t, 100 * err, 100 * tol, vmax, speed))
+
+    if args.floats:
+        name, start, tol = args.floats[0], float(args.floats[1]), float(args.floats[2])
+        lo, hi = sv.geometry_box("bodies", case)
+        text = sv._dictionary_text(os.path.join(case, "constant", "geometry"))
+        density = float(re.search(r"\bdensity\s+([^;]+);", text[re.search(r"\bbodies\b", text).end():]).group(1))
+        tank_lo, tank_hi = sv.geometry_box("walls", case)
+        width, h = tank_hi[horizontal] - tank_lo[horizontal], hi[up] - lo[up]
+        draft = density / rho0 * h
+        # the water's area (its particles' volumes at the start: hydrostatic, so m/rho) and the
+        # body's displacement B d raise the still level over the tank's width
+        level = tank_lo[up] + (np.sum(1 / rho_0) * np.mean(rho_0) * volume + (hi[horizontal] - lo[horizontal]) * draft) / width
+        expected = level - draft + h / 2
+        centres, tilts = [], []
+        for t, d in times:
+            body = sv._dictionary_text(os.path.join(case, d, "uniform", "bodies"))
+            entry = body[re.search(r"\b%s\b" % re.escape(name), body).end():]
+            position = [float(v) for v in re.search(r"\bposition\s*\(([^)]*)\)", entry).group(1).split()]
+            q = [float(v) for v in re.search(r"\borientation\s*\(([^)]*)\)", entry).group(1).split()]
+            tilts.append(np.degrees(2 * np.arccos(min(1.0, abs(q[0])))))
+            if t >= start:
+                centres.append(position[up])
+        mean = float(np.mean(centres))
+        check(len(centres) >= 5 and abs(mean - expected) <= tol and max(tilts) < 2,
+              "body '%s' (density %g) floats: centre of mass %.4f m on average over %d times from t = %g "
+              "(heave +-%.4f m), Archimedes %.4f m (draft %.4f m, still level %.4f m): off by %.4f m "
+              "(bound %g); largest tilt %.2f degrees"
+              % (name, density, mean, len(centres), start, np.std(centres), expected, draft, level,
+                 mean - expected, tol, max(tilts)))
 
 
 main()

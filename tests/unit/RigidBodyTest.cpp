@@ -1,6 +1,7 @@
 // Rigid bodies (libsrc/RigidBody.hpp, constant/geometry `bodies`): Newton–Euler to round-off
 // where the answer is exact (a ballistic flight, a torque-free spin), constraints, a body that
-// meets the floor stops there, and a body of the water's density stays where it is in still water.
+// meets the floor stops there, a body of the water's density stays where it is in still water, and
+// a restart continues a body bit for bit.
 #include "Case.hpp"
 #include "Log.hpp"
 #include "RigidBody.hpp"
@@ -9,6 +10,9 @@
 
 #include <gtest/gtest.h>
 #include <fstream>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 using namespace spindrift;
 namespace fs = std::filesystem;
@@ -142,6 +146,41 @@ TEST(RigidBody, OfTheWatersDensityStaysPutInStillWater) {
     const V3 start(0.2, 0.15, 0);
     const V3 drift = bodyPosition(dir / CaseWriter(dir).existingTimes().back().second) - start;
     EXPECT_LT(drift.norm(), 0.1 * 0.02) << "drift (" << drift.transpose() << ") over 2 s";
+}
+
+// A floating box dropped into water, run to 0.16 s at once and in two halves (a restart from
+// 0.08 s, at another thread count): the body's state and the fluid continue bit for bit.
+TEST(RigidBody, ARestartContinuesTheBodyBitForBit) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const std::string water = "fluid { water { type box; min (0 0 0); max (0.4 0.2 0); initialPressure hydrostatic; } }\n"
+                              "walls { tank { type container; min (0 0 0); max (0.4 0.4 0); layers 3; open (yMax); } }\n";
+    const std::string box = "        type box; min (0.14 0.22 0); max (0.26 0.28 0); density 500;\n";
+    const fs::path whole = bodyCase(tmp.path() / "whole", water, box, "0.16");
+    Simulation(whole).run();
+    const fs::path split = bodyCase(tmp.path() / "split", water, box, "0.08");
+    Simulation(split).run();
+    std::string control = test::readFile(split / "system/controlDict");
+    control = "startFrom latestTime;\n" + control;
+    control.replace(control.find("endTime 0.08;"), 13, "endTime 0.16;");
+    write(split / "system/controlDict", control);
+#ifdef _OPENMP
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(threads == 1 ? 2 : 1);
+#endif
+    Simulation(split).run();
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#endif
+    // the box fell in and moves (the comparison is not of a body at rest)
+    const V3 end = bodyPosition(whole / "0.16");
+    EXPECT_LT(end.y(), 0.25 - 0.02) << "the box fell into the water";
+    EXPECT_EQ(test::readFile(whole / "0.16/uniform/bodies"), test::readFile(split / "0.16/uniform/bodies"));
+    const ParticleSet a = readVtp(whole / "0.16/fluid.vtp"), b = readVtp(split / "0.16/fluid.vtp");
+    EXPECT_EQ(a.position(), b.position());
+    EXPECT_EQ(a.velocity(), b.velocity());
+    const ParticleSet ba = readVtp(whole / "0.16/block.vtp", "block"), bb = readVtp(split / "0.16/block.vtp", "block");
+    EXPECT_EQ(ba.position(), bb.position());
 }
 
 } // namespace
