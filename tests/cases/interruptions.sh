@@ -166,9 +166,13 @@ echo "ok restart with another particleSpacing: exit status 1, '$(cat "$work/spac
 
 # another user (nobody) on a case of root's: a time directory it cannot move aside (a fresh run
 # owns the case's times) stops the run naming it; one it cannot remove after rewriting the time
-# (-dryRun from latestTime rewrites it) is named in a warning. Run as root only (setpriv).
-if [ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null; then
-    asNobody() { setpriv --reuid=65534 --regid=65534 --clear-groups "$@"; }
+# (-dryRun from latestTime rewrites it) is named in a warning. Run as root only (setpriv), and
+# only where nobody can run the build (a build inside a private directory, e.g. a mktemp -d
+# clone, is not reachable by another user).
+asNobody() { setpriv --reuid=65534 --regid=65534 --clear-groups "$@"; }
+if [ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null && ! asNobody "$solver" -version > /dev/null 2>&1; then
+    echo "skipped: the user nobody cannot run $solver here (a private directory on its path)"
+elif [ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null; then
     chmod 755 "$work"
     newCase other 0.01
     "$solver" -case "$work/other" > "$work/other/log" 2>&1 || fail "other user: the first run failed"
