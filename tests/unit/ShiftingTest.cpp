@@ -1,4 +1,4 @@
-// Shifting plugins (transportVelocity, deltaPlus) on small particle sets: a disordered lattice
+// Shifting plugins (transportVelocity, deltaPlus, particleCollision) on small particle sets: a disordered lattice
 // relaxes towards a regular one, the shift changes no momentum, a uniform flow is not shifted,
 // walls complete the concentration, and δ⁺'s free-surface treatment keeps the surface particles
 // in the fluid. Also laminar's lattice correction: the viscous sum of a quadratic velocity field
@@ -177,6 +177,50 @@ TEST_P(ShiftingModels, WallParticlesCompleteTheConcentration) {
 
 INSTANTIATE_TEST_SUITE_P(Shifting, ShiftingModels, testing::Values(transportVelocity, deltaPlus),
                          [](const auto& info) { return info.param.substr(5, info.param.find(';') - 5); });
+
+// particleCollision (Kruisbrink et al. 2018): on a lattice at rest nothing is about to collide
+// (untouched); two neighbours driven at each other collide inelastically (restitution 0): their
+// predicted approach along the line of centres is stopped, the momentum is kept and the pairs
+// that do not approach are not touched; no drift correction.
+TEST(ParticleCollision, StopsAnApproachAndKeepsTheMomentum) {
+    ShiftScene sc(12, 12, true);
+    auto& fluid = test::fluidOf(sc.s);
+    auto m = sc.model("type particleCollision; distance 0.7; restitution 0; sweeps 1;");
+    for (auto& v : fluid.particles.velocity()) v.setZero();
+    for (auto& a : fluid.particles.acceleration()) a.setZero();
+    const Scalar dt = Scalar(sc.dt());
+    m->computeShift(sc.s, fluid, test::stepOf(sc.s, dt));
+    for (const Vec3& a : fluid.particles.acceleration()) EXPECT_EQ(a, Vec3::Zero()) << "at rest";
+    // two horizontal neighbours i, j = i + 1 run at each other: their predicted gap would be
+    // 0.2 dx, inside the 0.7 dx of a collision
+    std::size_t i = 0, j = 0;
+    const auto& x = fluid.particles.position();
+    for (std::size_t k = 0; k < x.size() && j == 0; ++k)
+        for (std::size_t l = 0; l < x.size(); ++l)
+            if (std::abs(x[l].x() - x[k].x() - dx) < 1e-6 && std::abs(x[l].y() - x[k].y()) < 1e-6 &&
+                x[k].x() > 3 * dx && x[l].x() < 9 * dx) {
+                i = k, j = l;
+                break;
+            }
+    ASSERT_NE(i, j);
+    const Scalar speed = Scalar(0.4 * dx) / dt;
+    fluid.particles.velocity()[i] = Vec3(speed, 0, 0);
+    fluid.particles.velocity()[j] = Vec3(-speed, 0, 0);
+    m->computeShift(sc.s, fluid, test::stepOf(sc.s, dt));
+    const auto& a = fluid.particles.acceleration();
+    // Δv_i = −½ (v_ij·n) n = −speed x̂: the approach stopped (both at rest after the step)
+    EXPECT_NEAR((fluid.particles.velocity()[i] + dt * a[i]).x(), 0, test::tol(1e-12, 1e-5) * speed);
+    EXPECT_NEAR((fluid.particles.velocity()[j] + dt * a[j]).x(), 0, test::tol(1e-12, 1e-5) * speed);
+    Vec3 total = Vec3::Zero();
+    std::size_t touched = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        total += a[k];
+        if (a[k] != Vec3::Zero()) ++touched;
+    }
+    EXPECT_EQ(touched, 2u) << "only the colliding pair";
+    EXPECT_LT(total.norm(), test::tol(1e-12, 1e-5) * speed / dt);
+    for (const Vec3& d : sc.shift()) EXPECT_EQ(d, Vec3::Zero()) << "no drift correction";
+}
 
 TEST(TransportVelocity, BackgroundPressureDefaultsToRho0C0Squared) {
     // δv = −Δt (p_b/ρ0²) Σ_j m ∇W_ij: check the scale against an explicit p_b = ρ0 c0²
