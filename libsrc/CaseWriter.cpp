@@ -442,7 +442,9 @@ CaseWriter::RunStart CaseWriter::beginRun(double from, const std::string& contin
     std::sort(later.begin(), later.end());
     times_.clear();
     for (const auto& [value, name] : existingTimes()) {
-        const bool moved = std::any_of(later.begin(), later.end(), [&](const auto& l) { return l.second == name; });
+        const std::string& timeName = name; // clang 14 cannot capture a structured binding
+        const bool moved =
+            std::any_of(later.begin(), later.end(), [&](const auto& l) { return l.second == timeName; });
         if (moved) continue;
         if (continuing) times_.push_back({value, name, otherFilesIn(caseDir_ / name)});
         else start.notListed.push_back(name);
