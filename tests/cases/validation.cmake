@@ -25,6 +25,14 @@ endforeach()
 add_test(NAME Validation.damBreakColagrossi2D
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/colagrossiQuick.sh $<TARGET_FILE:spindriftSolver>
           ${validationDir}/damBreakColagrossi2D)
+if(PVPYTHON)
+  # the far wall's force (its reactions) against its probes' pressure integrated (issue 37)
+  add_test(NAME Validation.damBreakColagrossi2DFarWallForce
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/farWallForceQuick.sh $<TARGET_FILE:spindriftSolver> ${PVPYTHON}
+            ${validationDir}/damBreakColagrossi2D)
+  set_tests_properties(Validation.damBreakColagrossi2DFarWallForce
+    PROPERTIES ENVIRONMENT "${validationEnv}" TIMEOUT 600 LABELS validation)
+endif()
 add_test(NAME Bench.QuickDamBreak
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/benchQuick.sh $<TARGET_FILE:spindriftBench> ${validationDir}/damBreak2D)
 add_test(NAME Bench.Pick
