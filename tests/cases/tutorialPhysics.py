@@ -21,6 +21,13 @@ checks (each optional; a failed one prints why and the script exits 1):
                             particle centres (a moving wall: its own file at every time)
   --still-bottom TOL SPEED  (a tank at rest) the bottom row's mean pressure within TOL of
                             rho0 g H and the largest speed below SPEED at the last time
+  --wall-slide T0 T1        (2D) fluid left on a side wall slides down it: the particles within 2 dx
+                            of a side wall's face and more than dx above the free surface beside
+                            it (the highest particle 4-8 dx from that face), at every written
+                            time in [T0, T1], move at a median speed of at least the surface
+                            speed of a film one particle thick draining down a no-slip wall,
+                            g dx^2 / (2 nu) (Nusselt; nu: fluidProperties' viscosity); slower,
+                            they are held by more than the case's viscosity holds a film
   --floats BODY FROM TOL    (2D) the box body BODY (constant/geometry bodies, its density) floats
                             at Archimedes' draft: its centre of mass, averaged over the times
                             from FROM on (its heave), within TOL [m] of the still level of the
@@ -60,6 +67,7 @@ def main():
     ap.add_argument("--outside-of")
     ap.add_argument("--still-bottom", nargs=2, type=float, metavar=("TOL", "SPEED"))
     ap.add_argument("--floats", nargs=3, metavar=("BODY", "FROM", "TOL"))
+    ap.add_argument("--wall-slide", nargs=2, type=float, metavar=("T0", "T1"))
     args = ap.parse_args()
     case = args.case
 
@@ -198,6 +206,30 @@ def main():
         check(abs(err) <= tol and vmax <= speed,
               "t = %g: bottom row's pressure %+.2f %% of rho0 g H off rho0 g (H - z) (bound %.1f %%), "
               "max speed %.3g m/s (bound %g)" % (t, 100 * err, 100 * tol, vmax, speed))
+
+    if args.wall_slide:
+        t0, t1 = args.wall_slide
+        nu = props.get("viscosity", 0.0)
+        bound = g * dx * dx / (2 * nu) if nu > 0 else np.inf
+        lo, hi = sv.geometry_box("walls", case)
+        speeds, slowest = [], (np.inf, 0.0, 0.0)
+        for t, x, v, _, _ in states:
+            if t < t0 - 1e-9 or t > t1 + 1e-9:
+                continue
+            for distance in (x[:, horizontal] - lo[horizontal], hi[horizontal] - x[:, horizontal]):
+                beside = (distance > 4 * dx) & (distance < 8 * dx)
+                if not beside.any():
+                    continue
+                held = (distance < 2 * dx) & (x[:, up] > x[beside, up].max() + dx)
+                s = np.linalg.norm(v[held], axis=1)
+                speeds.extend(s)
+                if len(s) and s.min() < slowest[0]:
+                    slowest = (s.min(), t, float(x[held, up][np.argmin(s)]))
+        median = float(np.median(speeds)) if speeds else np.inf
+        check(median >= bound,
+              "on the side walls above the free surface between t = %g and %g: %d particle-times, median speed "
+              "%.3f m/s (at least g dx^2/(2 nu) = %.3f m/s, a film one particle thick draining; slowest %.3f m/s "
+              "at t = %g, z = %.3f m)" % (t0, t1, len(speeds), median, bound, slowest[0], slowest[1], slowest[2]))
 
     if args.floats:
         name, start, tol = args.floats[0], float(args.floats[1]), float(args.floats[2])

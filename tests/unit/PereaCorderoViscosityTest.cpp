@@ -231,6 +231,42 @@ TEST(PereaCorderoViscosity, OptionsAndErrors) {
     EXPECT_NEAR(v->maxTimeStep(s), limit, test::tol(1e-12, 1e-5) * limit);
 }
 
+TEST(PereaCorderoViscosity, WallFrictionDoesNotGrowWithTheDensityDeficit) {
+    // tutorials/pereaWave (issue 34): a lone particle beside a wall sums 0.33-0.45 ρ0 (its
+    // neighbourhood is half wall, half empty), and μ/ρ_i² made the wall's no-slip friction
+    // (ρ0/ρ_i)² ≈ 5.5 times the bulk's: it held particles on the wall at 0.03 m/s. The wall term
+    // takes ρ_i at least ρ0 (wallDensityFloor, default); a compressed particle keeps μ/ρ_i².
+    TestScene sc(2, "sinc2", 1e-3, 2.0);
+    const double dx = sc.s.physics.particleSpacing;
+    test::fillLattice(sc.s, *sc.kernel, Vec3::Zero(), Vec3(dx, dx, 0));
+    std::vector<Vec3> wall; // three layers left of x = 0, on the fluid's lattice
+    for (int layer = 0; layer < 3; ++layer)
+        for (int j = -4; j <= 4; ++j) wall.emplace_back(-(layer + 0.5) * dx, j * dx, 0);
+    test::addWallSystem(sc.s, "wall", wall);
+    auto& fluid = test::fluidOf(sc.s);
+    ASSERT_EQ(fluid.particles.size(), 1u);
+    fluid.particles.position() = {Vec3(0.75 * dx, 0, 0)};
+    fluid.particles.velocity() = {Vec3(0, -0.3, 0)};
+    test::rebuild(sc.s);
+    auto akinci = test::createModel<BoundaryModel>("type akinci; volume lattice;", sc.s.physics);
+    akinci->initialise(sc.s);
+    const double rho0 = sc.s.physics.rho0;
+    auto friction = [&](double rho, const std::string& options) {
+        fluid.particles.density() = {rho};
+        return Vec3(sc.accelerate("type pereaCordero; mu 2.6; dampingScale 1e9; " + options)[0]); // Γ = 1
+    };
+    const Vec3 atRest = friction(rho0, "");
+    ASSERT_GT(atRest.y(), 0.0) << "the wall drags the particle back: it slides down, the friction points up";
+    for (double deficit : {0.43, 0.7, 0.99}) {
+        const Vec3 a = friction(deficit * rho0, "");
+        EXPECT_LT((a - atRest).norm(), 1e-6 * atRest.norm()) << "rho = " << deficit << " rho0";
+        const Vec3 unfloored = friction(deficit * rho0, "wallDensityFloor no;");
+        EXPECT_NEAR(unfloored.y(), atRest.y() / (deficit * deficit), 1e-6 * unfloored.norm()) << "rho = " << deficit << " rho0";
+    }
+    const Vec3 compressed = friction(1.05 * rho0, "");
+    EXPECT_NEAR(compressed.y(), atRest.y() / (1.05 * 1.05), 1e-6 * atRest.norm());
+}
+
 TEST(Xsph, VelocityChangeOverAStepMatchesAHandComputation) {
     // Δv_i = dt a_i = c Σ_j (2 m / (ρ_i + ρ_j)) (v_j − v_i) W_ij, and kinetic energy decreases
     TestScene sc(2, "cubicSpline");

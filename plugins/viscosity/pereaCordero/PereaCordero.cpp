@@ -16,14 +16,18 @@
 // speeds (e.g. 0.1 m/s) makes Γ act.
 // μ: `mu` (dynamic, Pa s, uniform) if given, else μ_i = ρ_i ν with ν from fluidProperties.
 // Walls: their particles with the fluid particle's density and viscosity, moving with the
-// velocity the boundary model gives viscous terms (wallFactor scales them; 0 = free slip).
+// velocity the boundary model gives viscous terms (wallFactor scales them; 0 = free slip). The
+// density of that term is max(ρ_i, ρ0) (wallDensityFloor yes, the default): a summed density
+// falls short of ρ0 by missing neighbours, and μ/ρ_i² made the wall's friction on a lone
+// particle (0.33–0.45 ρ0) 5–9 times the bulk's, holding it on a wall (issue 34, pereaWave).
 //
-//   viscosity { type pereaCordero; form difference; mu 0.26; dampingScale 0.1; wallFactor 1; }
+//   viscosity { type pereaCordero; form difference; mu 0.26; dampingScale 0.1; wallFactor 1; wallDensityFloor yes; }
 #include "Log.hpp"
 #include "Plugin.hpp"
 #include "PairLoop.hpp"
 #include "ViscosityModel.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace {
@@ -40,6 +44,7 @@ struct DampedViscosityTerm {
     const Vec3* v;
     const Scalar* rho;
     Scalar m, mu, nu, g, wallFactor; // Γ = exp(−g |v_ji| / (ρ_i ρ_j r)), g = 2 h ρ0² / U
+    Scalar wallRho;                  // the wall term's least density: ρ0 (wallDensityFloor yes), else 0
     bool constantMu, paper, visitsWalls;
     Scalar muOverRho2(Scalar r) const { return constantMu ? mu / (r * r) : nu / r; }
     Scalar gamma(const Vec3& dv, Scalar rhoiRhoj, Scalar r) const {
@@ -54,11 +59,14 @@ struct DampedViscosityTerm {
         if (paper) sum += w * (cj * v[q.j] + pi.c * pi.v);
         else sum += (w * Scalar(0.5) * (pi.c + cj)) * dv;
     }
-    // the wall's particles with ρ_b = ρ_i and μ_b = μ_i, moving with the velocity viscous terms see
+    // the wall's particles with ρ_b = ρ_i and μ_b = μ_i, moving with the velocity viscous terms see;
+    // ρ_i floored at ρ0 (wallDensityFloor): a summed density short of ρ0 is missing neighbours, and
+    // μ/ρ_i² would scale the wall's no-slip friction on a particle by (ρ0/ρ_i)²
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
         const Scalar r = std::sqrt(q.r2);
         const Vec3 vb = q.src.vViscous[q.j], dv = vb - pi.v;
-        const Scalar w = wallFactor * q.mass() * kt.laplacian(r) * gamma(dv, pi.rho * pi.rho, r) * pi.c;
+        const Scalar w = wallFactor * q.mass() * kt.laplacian(r) * gamma(dv, pi.rho * pi.rho, r) *
+                          muOverRho2(std::max(pi.rho, wallRho));
         sum += paper ? Vec3(w * (vb + pi.v)) : Vec3(w * dv);
     }
 };
@@ -68,7 +76,8 @@ public:
     explicit PereaCordero(const ModelContext& c)
         : paperForm_(c.dict.getWordOrDefault("form", {"difference", "paper"}, "difference") == "paper"),
           constantMu_(c.dict.found("mu")), mu_(constantMu_ ? c.dict.get<double>("mu") : 0.0), nu_(c.physics.nu),
-          rho0_(c.physics.rho0), wallFactor_(c.dict.getOrDefault<double>("wallFactor", 1.0)) {
+          rho0_(c.physics.rho0), wallFactor_(c.dict.getOrDefault<double>("wallFactor", 1.0)),
+          wallFloor_(c.dict.getOrDefault<bool>("wallDensityFloor", true)) {
         if (constantMu_ && !(mu_ > 0))
             throw InputError(c.dict.locationOf("mu"), "mu (dynamic viscosity) must be positive", "mu");
         if (!constantMu_ && !(nu_ > 0))
@@ -106,11 +115,12 @@ private:
         const Scalar h = s.constants.supportRadius;
         return {s.kernel,    fluid.particles.velocity().data(), fluid.particles.density().data(),
                 fluid.particles.particleMass(), mu_, nu_, 2 * h * rho0_ * rho0_ / dampingScale_,
-                wallFactor_, constantMu_, paperForm_, wallFactor_ != 0};
+                wallFactor_, wallFloor_ ? rho0_ : Scalar(0), constantMu_, paperForm_, wallFactor_ != 0};
     }
 
     bool paperForm_, constantMu_;
     Scalar mu_, nu_, rho0_, wallFactor_, dampingScale_ = 0;
+    bool wallFloor_;
 };
 } // namespace
 
