@@ -1,5 +1,5 @@
-// Spindrift — one run of a case: set-up (dictionaries → particle systems → constants → models)
-// and the time loop
+// Spindrift — one run of a case: set-up (Simulation.cpp: dictionaries → particle systems →
+// constants → models) and the time loop (TimeLoop.cpp)
 //   walls placed → neighbour search → density → boundary → non-pressure → pressure → integrator → write.
 #pragma once
 
