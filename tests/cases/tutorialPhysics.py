@@ -29,10 +29,12 @@ checks (each optional; a failed one prints why and the script exits 1):
                             g dx^2 / (2 nu) (Nusselt; nu: fluidProperties' viscosity); slower,
                             they are held by more than the case's viscosity holds a film
   --floats BODY FROM TOL    (2D) the box body BODY (constant/geometry bodies, its density) floats
-                            at Archimedes' draft: its centre of mass, averaged over the times
-                            from FROM on (its heave), within TOL [m] of the still level of the
-                            tank's water with the body's displacement, less the draft
-                            rho_b/rho0 h, plus h/2; upright (tilt < 2 degrees) at every time
+                            at Archimedes' draft d = rho_b/rho0 h: its draft, the still level of
+                            the tank's water with the body's displacement B d (the water's area
+                            at the start plus B d, over the tank's width) less the bottom of the
+                            body (its centre of mass averaged over the times from FROM on, its
+                            heave, less h/2), within the fraction TOL of d; upright (tilt < 2
+                            degrees) at every time
 """
 import argparse
 import os
@@ -253,12 +255,14 @@ def main():
             if t >= start:
                 centres.append(position[up])
         mean = float(np.mean(centres))
-        check(len(centres) >= 5 and abs(mean - expected) <= tol and max(tilts) < 2,
-              "body '%s' (density %g) floats: centre of mass %.4f m on average over %d times from t = %g "
-              "(heave +-%.4f m), Archimedes %.4f m (draft %.4f m, still level %.4f m): off by %.4f m "
-              "(bound %g); largest tilt %.2f degrees"
-              % (name, density, mean, len(centres), start, np.std(centres), expected, draft, level,
-                 mean - expected, tol, max(tilts)))
+        measured = level - (mean - h / 2)  # the draft: the still level less the body's bottom
+        error = measured / draft - 1
+        check(len(centres) >= 5 and abs(error) <= tol and max(tilts) < 2,
+              "body '%s' (density %g) floats: draft %.5f m against Archimedes' %.4f m: %+.2f %% (bound %g %%); "
+              "centre of mass %.5f m on average over %d times from t = %g (heave +-%.4f m) against %.5f m "
+              "(still level %.5f m): %+.2f mm = %+.3f dx; largest tilt %.2f degrees"
+              % (name, density, measured, draft, 100 * error, 100 * tol, mean, len(centres), start,
+                 np.std(centres), expected, level, 1000 * (mean - expected), (mean - expected) / dx, max(tilts)))
 
 
 main()

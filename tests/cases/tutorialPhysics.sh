@@ -5,7 +5,8 @@
 # energy, volume as asked.
 #   tutorialPhysics.sh <spindrift> <tutorial dir> <pvpython> <edits> [checks...]
 # <edits>: ','-separated 'file:keyword=value' set in the clone first (a quick mode: a shorter
-# endTime, a coarser spacing, another pressure solver), '' for the tutorial as shipped.
+# endTime, a coarser spacing, another pressure solver), '' for the tutorial as shipped;
+# 'file:block.keyword=value' sets the keyword of a named block (an indented entry).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/../../etc/RunFunctions"
@@ -21,7 +22,17 @@ for edit in "${list[@]}"; do
     file=${edit%%:*} setting=${edit#*:}
     keyword=${setting%%=*} value=${setting#*=}
     before=$(cat "$case/$file")
-    sed -i -E "s|^$keyword( +).*|$keyword\\1$value;|" "$case/$file"
+    if [[ $keyword == *.* ]]; then
+        # block.keyword: the first indented 'keyword' line after the line naming the block alone
+        # (constant/geometry:box.min=(0.4 0.36 0) moves the body 'box')
+        awk -v block="${keyword%.*}" -v key="${keyword##*.}" -v value="$value" '
+            !done && $0 ~ "^[ \t]*" block "[ \t]*$" { inside = 1 }
+            !done && inside && $1 == key { match($0, "^[ \t]*" key "[ \t]+"); $0 = substr($0, 1, RLENGTH) value ";"; done = 1 }
+            { print }' "$case/$file" > "$case/$file.edited"
+        mv "$case/$file.edited" "$case/$file"
+    else
+        sed -i -E "s|^$keyword( +).*|$keyword\\1$value;|" "$case/$file"
+    fi
     [ "$before" != "$(cat "$case/$file")" ] || { echo "edit '$edit' changed nothing"; exit 1; }
 done
 cd "$case"
