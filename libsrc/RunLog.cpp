@@ -48,13 +48,12 @@ long automaticLogInterval(double estimatedSteps) {
             if (double(mantissa * decade) * lines >= estimatedSteps) return mantissa * decade;
 }
 
-std::string clockTime() {
+std::string localTime(const char* format) {
     const std::time_t now = std::time(nullptr);
     std::tm local{};
     localtime_r(&now, &local);
-    char text[16];
-    std::strftime(text, sizeof text, "%H:%M:%S", &local);
-    return text;
+    char text[64];
+    return std::strftime(text, sizeof text, format, &local) ? text : "";
 }
 
 RunLog::RunLog(const TimeControl& time, double startTime, long startStep)
@@ -69,7 +68,7 @@ std::string RunLog::eta(double time) const {
 
 void RunLog::wrote(double time, long step) const {
     std::ostringstream o;
-    o << "Wrote time " << CaseWriter::timeName(time) << " (step " << step << ") at " << clockTime() << ", "
+    o << "Wrote time " << CaseWriter::timeName(time) << " (step " << step << ") at " << localTime() << ", "
       << formatDuration(wallSeconds()) << " wall";
     if (time > startTime_ && !time_.finished(time)) o << ", ETA " << eta(time);
     log::info(o.str());

@@ -26,8 +26,8 @@ std::string formatDuration(double seconds);
 // smallest of 1, 2, 5, 10, 20, 50, ... steps that keeps it to at most 250 step lines (a
 // 10,000-step run logs every 50th step: 200 lines).
 long automaticLogInterval(double estimatedSteps);
-// The wall-clock time of day, hh:mm:ss.
-std::string clockTime();
+// The local wall-clock time in a strftime format (the default: the time of day, hh:mm:ss).
+std::string localTime(const char* format = "%H:%M:%S");
 
 class RunLog {
 public:

@@ -11,6 +11,7 @@
 #include "Log.hpp"
 #include "ModelRegistry.hpp"
 #include "PostProcess.hpp"
+#include "RunLog.hpp"
 #include "Simulation.hpp"
 
 #include <boost/program_options.hpp>
@@ -18,7 +19,6 @@
 #include <unistd.h>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <iostream>
 #ifdef _OPENMP
 #include <omp.h>
@@ -226,14 +226,9 @@ void listModels(const std::string& only) {
 }
 
 std::string startedLine() {
-    const std::time_t now = std::time(nullptr);
-    std::tm local{};
-    localtime_r(&now, &local);
-    char date[32];
-    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S", &local);
     char host[256] = "?";
     gethostname(host, sizeof host - 1);
-    return std::string(date) + " on " + host + ", pid " + std::to_string(getpid());
+    return localTime("%Y-%m-%d %H:%M:%S") + " on " + host + ", pid " + std::to_string(getpid());
 }
 
 void banner(const Simulation& sim, const std::string& threads) {
