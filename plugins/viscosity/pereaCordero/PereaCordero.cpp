@@ -38,7 +38,7 @@ struct DampedViscosityTerm {
     using Sum = Vec3;
     struct Particle {
         Vec3 v;
-        Scalar rho, c; // c = μ_i/ρ_i²
+        Scalar rho, c, cWall; // c = μ_i/ρ_i²; cWall the same at max(ρ_i, wallRho)
     };
     const KernelTable& kt;
     const Vec3* v;
@@ -51,7 +51,9 @@ struct DampedViscosityTerm {
         const Scalar num = g * dv.norm();
         return num > 0 ? std::exp(-num / (rhoiRhoj * r)) : Scalar(1);
     }
-    Particle particle(std::size_t i) const { return {v[i], rho[i], muOverRho2(rho[i])}; }
+    Particle particle(std::size_t i) const {
+        return {v[i], rho[i], muOverRho2(rho[i]), muOverRho2(std::max(rho[i], wallRho))};
+    }
     void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
         const Scalar r = std::sqrt(q.r2);
         const Vec3 dv = v[q.j] - pi.v;
@@ -65,8 +67,7 @@ struct DampedViscosityTerm {
     void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
         const Scalar r = std::sqrt(q.r2);
         const Vec3 vb = q.src.vViscous[q.j], dv = vb - pi.v;
-        const Scalar w = wallFactor * q.mass() * kt.laplacian(r) * gamma(dv, pi.rho * pi.rho, r) *
-                          muOverRho2(std::max(pi.rho, wallRho));
+        const Scalar w = wallFactor * q.mass() * kt.laplacian(r) * gamma(dv, pi.rho * pi.rho, r) * pi.cWall;
         sum += paper ? Vec3(w * (vb + pi.v)) : Vec3(w * dv);
     }
 };
