@@ -4,6 +4,7 @@
 #pragma once
 
 #include "PairLoop.hpp"
+#include "Step.hpp"
 
 namespace spindrift {
 
@@ -74,6 +75,28 @@ struct OwnWallPressureTerm {
         const Scalar rho = q.src.rho[q.j];
         sum += (q.mass() * q.src.p[q.j] / (rho * rho)) * q.gradW;
     }
+};
+
+// The push of boundaries of their own pressure (adami) on a fluid whose pressure changes within
+// a solve (dfsph, pbf, relaxedPbf), taken in increments: update() has the core carry the fluid's
+// pressure p so far to the boundaries (StepServices::updateBoundaryPressure) and gives apply(i, Δ)
+// the change Δ of Σ_b M_b p_b/ρ_b² ∇W_ib at positions x since the last update of this solve, so
+// that over the solve the boundaries push with the pressure the fluid ends with.
+class OwnWallPush {
+public:
+    void start(std::size_t n) { applied_.assign(n, Vec3::Zero()); }
+    template <class Apply>
+    void update(Scene& s, const ParticleSystem& fluid, const Step& step, const std::vector<Scalar>& p,
+                const std::vector<Vec3>& x, Apply&& apply) {
+        step.core.updateBoundaryPressure(s, fluid, p);
+        forEachPairSum(s, fluid, x, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& push) {
+            apply(i, Vec3(push - applied_[i]));
+            applied_[i] = push;
+        });
+    }
+
+private:
+    std::vector<Vec3> applied_; // Σ_b M_b p_b/ρ_b² ∇W_ib as applied so far
 };
 
 // Σ_j (s_i + s_j) ∇W_ij over the cached gradients, for any per-particle scalar s (p/ρ²: the

@@ -151,10 +151,9 @@ public:
         rhoPredicted_.resize(n);
         ownPressureWalls_ = step.core.boundariesHaveOwnPressure(s);
         if (ownPressureWalls_) {
-            appliedWallPush_.assign(n, Vec3::Zero());
+            ownWallPush_.start(n);
             wallPressure_.resize(n);
         }
-        dt2_ = dt * dt;
 
         // The warm start comes from the previous step, also when the state is evaluated again
         // at the same time (the solver's initial evaluation, a restart).
@@ -338,15 +337,13 @@ private:
     // above η.)
     void pushOfOwnPressureWalls(Scene& s, const ParticleSystem& fluid, const Step& step) {
         if (!ownPressureWalls_) return;
-        const Scalar scale = -rho0_ / dt2_, dt2 = dt2_;
+        const Scalar dt2 = step.dt * step.dt, scale = -rho0_ / dt2;
         forEachIndex(wallPressure_.size(), [&](std::size_t i) { wallPressure_[i] = scale * lambdaTotal_[i]; });
-        step.core.updateBoundaryPressure(s, fluid, wallPressure_);
         pushedAt_ = predicted_;
-        forEachPairSum(s, fluid, pushedAt_, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& push) {
-            const Vec3 d = -dt2 * (push - appliedWallPush_[i]);
+        ownWallPush_.update(s, fluid, step, wallPressure_, pushedAt_, [&](std::size_t i, const Vec3& change) {
+            const Vec3 d = -dt2 * change;
             predicted_[i] += d;
             correction_[i] += d;
-            appliedWallPush_[i] = push;
         });
     }
 
@@ -369,12 +366,12 @@ private:
     // each fluid's time of its last solve (the warm start's source is taken once a time)
     std::map<std::string, double> lastSolveTime_;
     std::vector<Vec3> predicted_, correction_, step_;
-    // boundaries of their own pressure: their push as applied so far and where it was last taken,
-    // the fluid pressure −ρ0 λ/Δt² they extrapolate from, Δt²
+    // boundaries of their own pressure: their push, where it was last taken, and the fluid
+    // pressure −ρ0 λ/Δt² they extrapolate from
     bool ownPressureWalls_ = false;
-    std::vector<Vec3> appliedWallPush_, pushedAt_;
+    OwnWallPush ownWallPush_;
+    std::vector<Vec3> pushedAt_;
     std::vector<Scalar> wallPressure_;
-    Scalar dt2_ = 0;
     std::vector<Scalar> lambdaTotal_, dLambda_, rhoPredicted_; // λ of this solve, its increment, ρ*
     mutable std::vector<Scalar> pOverRho02_;                    // scratch of addReactions
     SolverStats stats_;

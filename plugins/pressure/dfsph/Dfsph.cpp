@@ -154,7 +154,7 @@ public:
         ownPressureWalls_ = step.core.boundariesHaveOwnPressure(s);
         linearisedAt_ = &fluid.particles.position();
         if (ownPressureWalls_) {
-            appliedWallPush_.assign(n, Vec3::Zero());
+            ownWallPush_.start(n);
             totalPressure_.resize(n);
         }
 
@@ -388,12 +388,9 @@ private:
         if (!ownPressureWalls_) return;
         const auto& rho = fluid.particles.density();
         forEachIndex(kappa.size(), [&](std::size_t i) { totalPressure_[i] = rho[i] * (kappa[i] + (other ? (*other)[i] : Scalar(0))); });
-        step.core.updateBoundaryPressure(s, fluid, totalPressure_);
         const Scalar dt = step.dt;
-        forEachPairSum(s, fluid, *linearisedAt_, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& push) {
-            velocity_[i] -= dt * (push - appliedWallPush_[i]);
-            appliedWallPush_[i] = push;
-        });
+        ownWallPush_.update(s, fluid, step, totalPressure_, *linearisedAt_,
+                            [&](std::size_t i, const Vec3& change) { velocity_[i] -= dt * change; });
     }
 
     // Applies warmStart × the last step's κ to velocity_ and keeps it as this step's start.
@@ -421,10 +418,10 @@ private:
     std::vector<Scalar> rate_, kappaOverRho_;
     std::vector<Vec3> velocity_, nextVelocity_, nextPositions_;
     mutable std::vector<Scalar> pOverRho2_; // scratch of addReactions
-    // boundaries of their own pressure: the push Σ_b M_b p_b/ρ_b² ∇W_ib as applied so far in the
-    // step, the positions the solve linearises about, and the fluid pressure p_b is taken from
+    // boundaries of their own pressure: their push, the positions the solve linearises about, and
+    // the fluid pressure p_b is taken from
     bool ownPressureWalls_ = false;
-    std::vector<Vec3> appliedWallPush_;
+    OwnWallPush ownWallPush_;
     const std::vector<Vec3>* linearisedAt_ = nullptr;
     std::vector<Scalar> totalPressure_;
     long checksTaken_ = 0, checksNotTaken_ = 0; // passed checks the next step took over, or not
