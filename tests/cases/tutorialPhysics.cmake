@@ -60,3 +60,12 @@ if(PVPYTHON)
   tutorial_physics(floatingBox2D.atRest.coarse floatingBox2D "${floatingBoxAtRest},constant/fluidProperties:particleSpacing=0.02"
     --max-density-error 0.01 --inside --floats box 1 0.01)
 endif()
+
+# damBreakObstacle3D (SPHERIC benchmark 2) in quick mode, dx = 0.55/10 m to 0.6 s: the water reaches
+# the box, P1's impact and H4's fall against the experiment, no fluid outside the tank (bounds
+# in the script; the case's own evaluate.py, python3 and numpy)
+add_test(NAME Tutorial.damBreakObstacle3D
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/damBreakObstacle3DQuick.sh $<TARGET_FILE:spindriftSolver>
+          ${PROJECT_SOURCE_DIR}/tutorials/damBreakObstacle3D)
+set_tests_properties(Tutorial.damBreakObstacle3D PROPERTIES
+  ENVIRONMENT "${SPINDRIFT_CASE_TEST_ENV};SPINDRIFT_DIR=${PROJECT_SOURCE_DIR}" TIMEOUT 600 LABELS tutorial)
