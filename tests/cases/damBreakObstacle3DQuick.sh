@@ -33,7 +33,7 @@ within() {
 # the water gets past the box's impacted face (x = 0.8245 m): measured 0.48 m at 0.6 s
 within frontMin -0.1 0.8
 # P1 (1 mm in front of the box's face, 21 mm up) first above 2000 Pa: the experiment's 0.394 s;
-# measured 0.476 s at dx = 0.55/10 (the coarse front is late: 0.427 s at 0.55/15)
+# measured 0.476 s at dx = 0.55/10 (the front is late with the no-slip walls: 0.457 s at 0.55/15)
 within p1Onset 0.35 0.52
 # the reservoir draining: RMS of H4 against the experiment over 0-0.6 s, measured 7.9 mm (1.4 %
 # of the 0.55 m column); a column that did not fall would be 0.1 m off at 0.6 s
