@@ -61,8 +61,8 @@ if(PVPYTHON)
     --max-density-error 0.01 --inside --floats box 1 0.01)
 endif()
 
-# damBreakObstacle3D (SPHERIC benchmark 2) in quick mode, dx = 0.55/10 m to 0.6 s: the water reaches
-# the box, P1's impact and H4's fall against the experiment, no fluid outside the tank (bounds
+# damBreakObstacle3D (SPHERIC benchmark 2) in quick mode, dx = 0.55/10 m to 1.6 s: the water passes
+# the box, P1's impact, H4's fall and H2 against the experiment, no fluid outside the tank (bounds
 # in the script; the case's own evaluate.py, python3 and numpy)
 add_test(NAME Tutorial.damBreakObstacle3D
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/damBreakObstacle3DQuick.sh $<TARGET_FILE:spindriftSolver>
