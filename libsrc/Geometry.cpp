@@ -1,6 +1,7 @@
 #include "Geometry.hpp"
 
 #include "Log.hpp"
+#include "Shape.hpp"
 
 #include <Eigen/Geometry> // cross, unitOrthogonal
 
@@ -68,9 +69,12 @@ void checkName(const Dictionary& parent, const std::string& name, const char* wh
                          name);
 }
 
-// Makes the box a whole number of spacings along each axis (its max moved to min + round(size/Δx)
-// Δx), with a warning at its entry when it was not: the lattice then fills it face to face.
+// A wall box (or a container's inside) must be a whole number of spacings along each axis for
+// the lattice to fill it face to face. One that is not is refused (its entry, `max`, the nearest
+// valid max values), unless the entry says `snapToLattice yes;`: then its max is moved to
+// min + round(size/Δx) Δx, which the log says.
 void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedName, Scalar dx, int dim) {
+    const bool snap = entry.getOrDefault<bool>("snapToLattice", false);
     for (int a = 0; a < dim; ++a) {
         const Scalar cells = std::round((box.max[a] - box.min[a]) / dx);
         // (the tolerance allows for the rounding of a float build as well)
@@ -79,22 +83,69 @@ void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedN
         if (std::abs(cells * dx - (box.max[a] - box.min[a])) > tolerance) {
             std::ostringstream s;
             s << scopedName << ": size along " << "xyz"[a] << " (" << box.max[a] - box.min[a]
-              << ") is not a multiple of particleSpacing " << dx << "; the wall is placed at max " << "xyz"[a] << " = "
-              << box.min[a] + cells * dx;
-            log::warning(locatedMessage(entry.locationOf("max"), "", s.str()));
+              << ") is not a multiple of particleSpacing " << dx;
+            if (!snap) {
+                const Scalar below = std::floor((box.max[a] - box.min[a]) / dx);
+                s << "; the nearest valid max " << "xyz"[a] << " are " << box.min[a] + std::max(Scalar(1), below) * dx
+                  << " and " << box.min[a] + (std::max(Scalar(1), below) + 1) * dx
+                  << " (or add 'snapToLattice yes;' to the entry to place it at " << box.min[a] + std::max(Scalar(1), cells) * dx
+                  << ")";
+                throw InputError(entry.locationOf("max"), s.str(), "max");
+            }
+            s << "; the wall is placed at max " << "xyz"[a] << " = " << box.min[a] + cells * dx << " (snapToLattice)";
+            log::info(locatedMessage(entry.locationOf("max"), "", s.str()));
             box.max[a] = box.min[a] + cells * dx;
         }
     }
 }
 
-// The lattice points of a solid box that lie within 'thickness' of its surface (its outermost
-// layers), appended to 'out'.
-void solidBoxLayers(const Box& box, Scalar thickness, Scalar dx, int dim, std::vector<Vec3>& out) {
-    forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
-        Scalar depth = std::numeric_limits<Scalar>::max();
-        for (int a = 0; a < dim; ++a) depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
-        if (depth < thickness) out.push_back(p);
-    });
+const std::vector<std::string>& wallTypes() {
+    static const std::vector<std::string> types = [] {
+        std::vector<std::string> t{"container"};
+        t.insert(t.end(), shapeTypes().begin(), shapeTypes().end());
+        return t;
+    }();
+    return types;
+}
+
+// A uniform solid's volume, centroid and inertia per unit density: a box's exactly (as ever),
+// any other shape's from its lattice points inside it, each Δx^dim of it (a point mass each; the
+// lattice's own error, O(Δx/size), is that of its particles).
+BodyMassProperties massProperties(const Shape& shape, Scalar dx) {
+    BodyMassProperties m;
+    const int dim = shape.dimension();
+    Vec3 lo, hi;
+    shape.bounds(lo, hi);
+    if (shape.isBox()) {
+        const Eigen::Vector3d size = (hi - lo).cast<double>();
+        m.volume = dim == 2 ? size[0] * size[1] : size[0] * size[1] * size[2];
+        m.centroid = 0.5 * (lo + hi).cast<double>();
+        if (dim == 2) m.centroid[2] = 0;
+        // the uniform box about its centre: I_xx = V (b² + c²)/12, ... (2D: the in-plane Izz)
+        m.inertia = Eigen::Matrix3d::Zero();
+        m.inertia(0, 0) = m.volume * (size[1] * size[1] + size[2] * size[2]) / 12;
+        m.inertia(1, 1) = m.volume * (size[0] * size[0] + size[2] * size[2]) / 12;
+        m.inertia(2, 2) = m.volume * (size[0] * size[0] + size[1] * size[1]) / 12;
+        return m;
+    }
+    std::vector<Vec3> points;
+    sampleShape(shape, dx, 0, points);
+    const double cell = dim == 2 ? double(dx) * double(dx) : double(dx) * double(dx) * double(dx);
+    m.volume = double(points.size()) * cell;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const Vec3& p : points) c += p.cast<double>();
+    if (!points.empty()) c /= double(points.size());
+    m.centroid = c;
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : points) {
+        const Eigen::Vector3d r = p.cast<double>() - c;
+        I += cell * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    if (dim == 2) { // a lamina per unit depth: only Izz = ∫ (x² + y²) matters
+        I(0, 1) = I(1, 0) = I(0, 2) = I(2, 0) = I(1, 2) = I(2, 1) = 0;
+    }
+    m.inertia = I;
+    return m;
 }
 
 int faceIndex(const std::string& face) {
@@ -107,8 +158,10 @@ int faceIndex(const std::string& face) {
 } // namespace
 
 bool SampledWall::occupies(const Vec3& p, int dim, Scalar margin) const {
-    const Box inner{min, max};
-    if (!container) return inner.contains(p, dim, -margin);
+    if (!container) {
+        if (shape) return shape->contains(p, -margin);
+        return Box{min, max}.contains(p, dim, -margin);
+    }
     // the shell: within 'thickness' outside the inner box, not inside it, not beyond an open face
     if (!Box{min - Vec3::Constant(thickness), max + Vec3::Constant(thickness)}.contains(p, dim, -margin)) return false;
     bool inShell = false;
@@ -248,6 +301,10 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
     if (const Dictionary* walls = geometry.findDict("walls"))
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
+            if (w.getWord("type", wallTypes()) != "container") {
+                add(latticePointCount(*readShape(w, dim, dx), dx), "walls." + name, walls->locationOf(name));
+                continue;
+            }
             const Box box = readBox(w, dim);
             const double layers = w.getOrDefault<double>("layers", 3);
             Vec3 lo = box.min, hi = box.max;
@@ -255,36 +312,31 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
                 lo[a] -= Scalar(layers * dx);
                 hi[a] += Scalar(layers * dx);
             }
-            add(w.getWordOrDefault("type", {"container", "box"}, "box") == "container"
-                    ? std::max(0.0, points(lo, hi) - points(box.min, box.max))
-                    : points(box.min, box.max),
-                "walls." + name, walls->locationOf(name));
+            add(std::max(0.0, points(lo, hi) - points(box.min, box.max)), "walls." + name, walls->locationOf(name));
         }
     if (const Dictionary* fluid = geometry.findDict("fluid"))
         for (const auto& name : fluid->keywords()) {
-            const Box box = readBox(fluid->subDict(name), dim);
-            const double n = points(box.min, box.max);
+            const double n = latticePointCount(*readShape(fluid->subDict(name), dim, dx), dx);
             add(n, "fluid." + name, fluid->locationOf(name));
             e.fluid += n;
         }
     if (const Dictionary* bodies = geometry.findDict("bodies"))
         for (const auto& name : bodies->keywords()) {
-            const Box box = readBox(bodies->subDict(name), dim);
-            add(points(box.min, box.max), "bodies." + name, bodies->locationOf(name));
+            add(latticePointCount(*readShape(bodies->subDict(name), dim, dx), dx), "bodies." + name,
+                bodies->locationOf(name));
         }
     return e;
 }
 
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, const Vec3& gravity) {
     SampledGeometry out;
-    std::vector<Box> solids;
+    std::vector<std::shared_ptr<const Shape>> solids;
     std::vector<std::pair<std::string, Box>> containers;
 
     if (const Dictionary* walls = geometry.findDict("walls")) {
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
-            const std::string type = w.getWord("type", {"container", "box"});
-            const Box box = readBox(w, dim);
+            const std::string type = w.getWord("type", wallTypes());
             const int layers = w.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
             const Scalar L = layers * dx;
@@ -301,6 +353,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             w.markUsed("motion");
             std::vector<Vec3>& wallPositions = sampled.positions;
             if (type == "container") {
+                const Box box = readBox(w, dim);
                 containers.emplace_back(name, box);
                 bool open[6] = {false, false, false, false, false, false};
                 for (const auto& face : w.getOrDefault<std::vector<std::string>>("open", {})) {
@@ -336,13 +389,18 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                     }
                     if (outside) wallPositions.push_back(p);
                 });
-            } else { // solid box: outermost layers inside the surface
-                Box solid = box;
-                snapToLattice(solid, w, "walls." + name, dx, dim);
-                solids.push_back(solid);
-                sampled.min = solid.min;
-                sampled.max = solid.max;
-                solidBoxLayers(solid, L, dx, dim, wallPositions);
+            } else { // a solid: the `layers` outermost lattice layers inside its surface
+                std::unique_ptr<Shape> shape = readShape(w, dim, dx);
+                if (shape->isBox()) { // a box is a whole number of spacings (or snapped to one)
+                    Box solid;
+                    shape->bounds(solid.min, solid.max);
+                    snapToLattice(solid, w, "walls." + name, dx, dim);
+                    shape = makeBox(solid.min, solid.max, dim);
+                }
+                sampled.shape = std::move(shape);
+                solids.push_back(sampled.shape);
+                sampled.shape->bounds(sampled.min, sampled.max);
+                sampleShape(*sampled.shape, dx, L, wallPositions);
             }
             if (wallPositions.empty())
                 throw InputError(w.where(), "wall '" + name + "' produced no particles (is it smaller than particleSpacing?)");
@@ -355,21 +413,21 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     if (const Dictionary* bodies = geometry.findDict("bodies")) {
         for (const auto& name : bodies->keywords()) {
             const Dictionary& b = bodies->subDict(name);
-            b.getWord("type", {"box"});
-            const Box box = readBox(b, dim);
+            std::shared_ptr<const Shape> shape = readShape(b, dim, dx);
             const int layers = b.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(b.locationOf("layers"), "'layers' must be at least 1", "layers");
             if (name == "fluid" || (geometry.findDict("walls") && geometry.subDict("walls").found(name)))
                 throw InputError(bodies->locationOf(name), "a body may not share its name with the fluid or a wall", name);
             checkName(*bodies, name, "body");
-            solids.push_back(box);
+            solids.push_back(shape);
             SampledWall& sampled = out.walls.emplace_back();
             sampled.name = name;
             sampled.where = bodies->locationOf(name);
-            sampled.min = box.min;
-            sampled.max = box.max;
+            shape->bounds(sampled.min, sampled.max);
+            sampled.shape = shape;
             sampled.body = &b;
-            solidBoxLayers(box, layers * dx, dx, dim, sampled.positions);
+            sampled.mass = massProperties(*shape, dx);
+            sampleShape(*shape, dx, layers * dx, sampled.positions);
             if (sampled.positions.empty())
                 throw InputError(b.where(), "body '" + name + "' produced no particles (is it smaller than particleSpacing?)");
         }
@@ -409,8 +467,9 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
         checkName(fluid, name, "fluid block");
-        f.getWord("type", {"box"});
-        const Box box = readBox(f, dim);
+        const std::unique_ptr<Shape> shape = readShape(f, dim, dx);
+        Box box;
+        shape->bounds(box.min, box.max);
         if (!containers.empty()) {
             const Scalar tol = Scalar(1e-9) + Scalar(1e-6) * dx;
             bool inside = false;
@@ -444,17 +503,20 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         const std::size_t before = out.fluidPositions.size();
         std::size_t shared = 0;
         occupied.beginRegion(out.fluidPositions, box.min, box.max);
-        forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
-            for (const auto& s : solids)
-                if (s.contains(p, dim, solidClearance)) return;
+        std::vector<Vec3> candidates;
+        sampleShape(*shape, dx, 0, candidates);
+        for (const Vec3& p : candidates) {
+            bool inSolid = false;
+            for (const auto& s : solids) inSolid = inSolid || s->contains(p, solidClearance);
+            if (inSolid) continue;
             if (occupied.filled(p)) {
                 ++shared;
-                return;
+                continue;
             }
             out.fluidPositions.push_back(p);
             out.fluidVelocities.push_back(velocity);
             hydrostaticParticle.push_back(hydrostatic);
-        });
+        }
         occupied.endRegion(out.fluidPositions);
         const std::size_t count = out.fluidPositions.size() - before;
         out.fluidBlocks.push_back({name, fluid.locationOf(name), before, count, box.min, box.max});
@@ -477,10 +539,8 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         // its lattice for the columns, exact for a body of the water's density)
         std::vector<Vec3> columns = out.fluidPositions;
         if (const Dictionary* bodies = geometry.findDict("bodies"))
-            for (const auto& name : bodies->keywords()) {
-                const Box box = readBox(bodies->subDict(name), dim);
-                forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) { columns.push_back(p); });
-            }
+            for (const auto& name : bodies->keywords())
+                sampleShape(*readShape(bodies->subDict(name), dim, dx), dx, 0, columns);
         std::vector<Scalar> depths = depthsBelowFreeSurface(columns, up, dx, dim);
         depths.resize(out.fluidPositions.size());
         for (std::size_t i = 0; i < depths.size(); ++i)
