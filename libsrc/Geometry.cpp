@@ -1,5 +1,6 @@
 #include "Geometry.hpp"
 
+#include "Expression.hpp"
 #include "Log.hpp"
 #include "Shape.hpp"
 
@@ -146,6 +147,51 @@ BodyMassProperties massProperties(const Shape& shape, Scalar dx) {
     }
     m.inertia = I;
     return m;
+}
+
+// A fluid region's initial velocity: `velocity (u v w);`, each component a number or a quoted
+// expression of x, y, z (Expression.hpp).
+struct VelocityField {
+    Vec3 constant = Vec3::Zero();
+    std::unique_ptr<Expression> component[3];
+    Vec3 at(const Vec3& p, int dim) const {
+        Vec3 v = constant;
+        for (int a = 0; a < 3; ++a)
+            if (component[a]) v[a] = Scalar((*component[a])(p));
+        if (dim == 2) v[2] = 0;
+        return v;
+    }
+};
+
+VelocityField readVelocity(const Dictionary& f, int dim) {
+    VelocityField field;
+    const Entry* e = f.findEntry("velocity");
+    const bool expressions =
+        e && !e->isDict() && std::any_of(e->tokens.begin(), e->tokens.end(), [](const Token& t) {
+            return t.kind == Token::Kind::String;
+        });
+    if (!expressions) {
+        field.constant = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
+        if (dim == 2) field.constant[2] = 0;
+        return field;
+    }
+    f.markUsed("velocity");
+    const auto& t = e->tokens;
+    const bool shaped = t.size() == 5 && t.front().kind == Token::Kind::Open && t.back().kind == Token::Kind::Close;
+    for (std::size_t k = 1; shaped && k < 4; ++k) {
+        if (t[k].kind == Token::Kind::String) {
+            field.component[k - 1] = std::make_unique<Expression>(t[k].text, t[k].where, "velocity");
+        } else if (t[k].kind == Token::Kind::Number) {
+            field.constant[k - 1] = Scalar(std::stod(t[k].text));
+        } else {
+            throw InputError(t[k].where, "a component of 'velocity' must be a number or a quoted expression of x, y, "
+                             "z, e.g. velocity (\"-100*x\" \"100*y\" 0); found '" + t[k].text + "'", "velocity");
+        }
+    }
+    if (!shaped)
+        throw InputError(f.locationOf("velocity"), "'velocity' needs 3 components, each a number or a quoted "
+                         "expression of x, y, z, e.g. velocity (\"-100*x\" \"100*y\" 0);", "velocity");
+    return field;
 }
 
 int faceIndex(const std::string& face) {
@@ -492,9 +538,17 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 throw InputError(f.where(), s.str());
             }
         }
-        Vec3 velocity = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
-        if (dim == 2) velocity[2] = 0;
-        const bool hydrostatic = f.getWordOrDefault("initialPressure", {"zero", "hydrostatic"}, "zero") == "hydrostatic";
+        const VelocityField velocity = readVelocity(f, dim);
+        // initialPressure zero | hydrostatic | "<expression of x, y, z>"
+        std::unique_ptr<Expression> pressure;
+        bool hydrostatic = false;
+        if (const Entry* e = f.findEntry("initialPressure");
+            e && !e->isDict() && e->tokens.size() == 1 && e->tokens[0].kind == Token::Kind::String) {
+            f.markUsed("initialPressure");
+            pressure = std::make_unique<Expression>(e->tokens[0].text, e->tokens[0].where, "initialPressure");
+        } else {
+            hydrostatic = f.getWordOrDefault("initialPressure", {"zero", "hydrostatic"}, "zero") == "hydrostatic";
+        }
         const Scalar g = gravity.norm();
         if (hydrostatic && !(g > 0))
             throw InputError(f.locationOf("initialPressure"), "initialPressure hydrostatic needs gravity "
@@ -514,7 +568,8 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 continue;
             }
             out.fluidPositions.push_back(p);
-            out.fluidVelocities.push_back(velocity);
+            out.fluidVelocities.push_back(velocity.at(p, dim));
+            out.fluidPressures.push_back(pressure ? Scalar((*pressure)(p)) : Scalar(0));
             hydrostaticParticle.push_back(hydrostatic);
         }
         occupied.endRegion(out.fluidPositions);

@@ -79,6 +79,8 @@ struct SampledGeometry {
     // fluid in its column), where its block starts hydrostatic (initialPressure hydrostatic), else
     // 0: the start gives it p = ρ0 |g| depth
     std::vector<Scalar> fluidDepths;
+    // each fluid particle's initial pressure from its region's `initialPressure "<expression>"`, else 0
+    std::vector<Scalar> fluidPressures;
     std::vector<SampledBlock> fluidBlocks;
     std::vector<SampledWall> walls;
     Vec3 boundsMin = Vec3::Zero(), boundsMax = Vec3::Zero(); // of everything sampled
