@@ -21,7 +21,10 @@ Expression::Expression(const std::string& text, const SourceLocation& where, con
         impl_->parser.SetExpr(text);
         impl_->parser.Eval(); // parses it: a syntax error or an unknown variable shows here
     } catch (const mu::Parser::exception_type& e) {
-        throw InputError(where, "expression \"" + text + "\" of '" + keyword + "': " + e.GetMsg() +
+        const std::string unknown = e.GetCode() == mu::ecUNASSIGNABLE_TOKEN
+                                        ? "unknown variable or function '" + e.GetToken() + "': "
+                                        : "";
+        throw InputError(where, "expression \"" + text + "\" of '" + keyword + "': " + unknown + e.GetMsg() +
                                     " (muParser; the variables are x, y and z)",
                          keyword);
     }
