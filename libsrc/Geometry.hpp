@@ -1,29 +1,33 @@
-// Spindrift — constant/geometry: fluid blocks and walls sampled into particles on the lattice
-// of spacing Δx.
+// Spindrift — constant/geometry: fluid regions, walls and bodies sampled into particles on the
+// lattice of spacing Δx.
 //
-//   fluid { <name> { type box; min (..); max (..); velocity (0 0 0); initialPressure zero; } ... }
-//           initialPressure hydrostatic: the block starts at p = ρ0 |g| (depth below its top)
+//   fluid { <name> { <shape>; velocity (0 0 0); initialPressure zero; } ... }
+//           velocity: each component a number or a quoted expression of x, y, z (Expression.hpp);
+//           initialPressure zero | hydrostatic (p = ρ0 |g| depth below its top) | "<expression>"
 //   walls { <name> { type container; min (..); max (..); layers 3; open (yMax); }   // hollow box
-//           <name> { type box; min (..); max (..); layers 3;                        // solid block
+//           <name> { <shape>; layers 3;                                            // a solid
 //                    motion { type linear; velocity (0.5 0 0); } } ... }           // optional (Motion.hpp)
-//   bodies { <name> { type box; min (..); max (..); layers 3; density 500; ... } }  // rigid bodies
-//           (sampled as solid blocks; their mass, inertia and constraints: RigidBodySetUp.hpp)
+//   bodies { <name> { <shape>; layers 3; density 500; ... } }  // rigid bodies
+//           (sampled as solids; their mass, inertia and constraints: RigidBody::read)
 //   periodic { x (0 1); }   // optional: axis (min max); leaving at max re-enters at min
+//   <shape>: type box | cylinder | sphere | polygon, and optionally subtract { ... } (Shape.hpp)
 //
-// Fluid particles sit at min + (i + ½)Δx. A container's wall particles continue that lattice
+// A shape's particles are its lattice points inside it (Shape.hpp: a box's lattice from its min,
+// every other shape's from the origin). A container's wall particles continue the lattice
 // outwards: layer k of a face lies (k + ½)Δx outside it, so the effective wall is the face
-// itself. A solid box keeps the `layers` outermost lattice layers inside its surface. A wall whose
-// size is not a whole number of Δx along an axis is made so, its max moved to min + round(size/Δx)
-// Δx (a warning names the entry): its particles then fill it to its faces. Fluid particles inside
-// a solid wall, or nearer its face than half a spacing, are removed (so no fluid particle starts
-// nearer a wall particle than Δx). Fluid blocks are filled in file order; a position an earlier
-// block fills is not filled again (OccupiedSpace: overlapping blocks are merged, a warning per
-// block says how many positions it shared). A hydrostatic start takes each particle's depth from
-// the free surface above it, over every fluid block: the top of the fluid in its column, down to
-// the first gap of more than half a spacing. Each wall entry is a wall system of its own, named
-// after the entry; names of walls and blocks are words of letters, digits, '_', '-' and '.'
-// starting with a letter or '_' (a wall's name is a file name, <name>.vtp, and a ParaView block
-// name in the .pvd). Room for cylinders, spheres and STL later: each shape is one `type`.
+// itself. A solid keeps the `layers` outermost lattice layers inside its surface. A wall box or
+// container whose size is not a whole number of Δx along an axis is refused (the error gives the
+// nearest valid max), unless its entry says `snapToLattice yes;`: its max is then moved to
+// min + round(size/Δx) Δx (the log says so) and its particles fill it to its faces. Fluid
+// particles inside a solid wall or body, or nearer its surface than half a spacing, are removed
+// (so no fluid particle starts nearer a wall particle than Δx). Fluid regions are filled in file
+// order; a position an earlier region fills is not filled again (OccupiedSpace: overlapping
+// regions are merged, a warning per region says how many positions it shared). A hydrostatic
+// start takes each particle's depth from the free surface above it, over every fluid region: the
+// top of the fluid in its column, down to the first gap of more than half a spacing. Each wall
+// entry is a wall system of its own, named after the entry; names of walls and blocks are words
+// of letters, digits, '_', '-' and '.' starting with a letter or '_' (a wall's name is a file
+// name, <name>.vtp, and a ParaView block name in the .pvd).
 #pragma once
 
 #include "Dictionary.hpp"

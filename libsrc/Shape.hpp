@@ -13,9 +13,9 @@
 // Signed distances: the cylinder (with caps), the sphere, the box and the polygon are exact
 // Euclidean distances (Quilez's primitives, e.g. https://iquilezles.org/articles/distfunctions/;
 // the polygon: the distance to its nearest edge, signed by the winding number of Hormann &
-// Agathos 2001, "The point in polygon problem for arbitrary polygons", Comput. Geom. 20:131–144,
-// doi:10.1016/S0925-7721(01)00012-8). A subtraction A − B is max(d_A, −d_B) (a bound, exact
-// inside).
+// Agathos 2001, "The point in polygon problem for arbitrary polygons", Computational Geometry
+// 20(3):131–144). A subtraction A − B is max(d_A, −d_B) (a bound, exact inside). docs/MODELS.md
+// §shapes.
 //
 // Sampling is written once against the interface (Geometry.cpp): a shape's particles are the
 // points of its lattice (latticeOrigin + (i + ½)Δx) that lie inside it; a solid's are those
