@@ -295,7 +295,8 @@ bool OccupiedSpace::filled(const Vec3& p) const {
     return false;
 }
 
-std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar dx, int dim) {
+std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar dx, int dim,
+                                           std::size_t solidFrom) {
     const std::size_t n = positions.size();
     std::vector<Scalar> depth(n, Scalar(0));
     if (n == 0 || !(up.norm() > 0)) return depth;
@@ -311,18 +312,35 @@ std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, c
     std::vector<Item> items(n);
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& p = positions[i];
-        items[i] = {std::lround(p.dot(across1) / dx), dim == 3 ? std::lround(p.dot(across2) / dx) : 0L, p.dot(up), i};
+        // (the cell's edges at k + 0.75 spacings: neither lattice of the case, (i + ½)Δx from the
+        // origin or from a box's min on a multiple of Δx, lies on one, where rounding would split
+        // the points of one column between two)
+        const auto cell = [&](const Vec3& axis) { return long(std::floor(p.dot(axis) / dx + Scalar(0.25))); };
+        items[i] = {cell(across1), dim == 3 ? cell(across2) : 0L, p.dot(up), i};
     }
     // each column from its top down
     std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
         return a.c1 != b.c1 ? a.c1 < b.c1 : a.c2 != b.c2 ? a.c2 < b.c2 : a.height > b.height;
     });
     const Scalar gap = Scalar(1.5) * dx;
-    Scalar surface = 0;
+    Scalar surface = 0, last = 0;
+    bool inWater = false, lastSolid = false;
     for (std::size_t k = 0; k < n; ++k) {
         const Item& it = items[k];
-        const bool newColumn = k == 0 || it.c1 != items[k - 1].c1 || it.c2 != items[k - 1].c2;
-        if (newColumn || items[k - 1].height - it.height > gap) surface = it.height + dx / 2;
+        if (k == 0 || it.c1 != items[k - 1].c1 || it.c2 != items[k - 1].c2) inWater = false;
+        if (it.index >= solidFrom) { // a solid: it bridges the water above it to the water below
+            if (inWater) {
+                last = it.height;
+                lastSolid = true;
+            }
+            continue;
+        }
+        // (the water keeps half a spacing clear of a solid's surface, more than that along a
+        // column where the surface is steep: the water next below a bridging solid continues it)
+        if (!inWater || (!lastSolid && last - it.height > gap)) surface = it.height + dx / 2;
+        inWater = true;
+        last = it.height;
+        lastSolid = false;
         depth[it.index] = surface - it.height;
     }
     return depth;
@@ -593,10 +611,14 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         // a body in the water does not end its column: the water below it bears it (filled with
         // its lattice for the columns, exact for a body of the water's density)
         std::vector<Vec3> columns = out.fluidPositions;
-        if (const Dictionary* bodies = geometry.findDict("bodies"))
-            for (const auto& name : bodies->keywords())
-                sampleShape(*readShape(bodies->subDict(name), dim, dx), dx, 0, columns);
-        std::vector<Scalar> depths = depthsBelowFreeSurface(columns, up, dx, dim);
+        for (const SampledWall& w : out.walls)
+            if (w.body) sampleShape(*w.shape, dx, 0, columns);
+        // a solid wall under water does not end its column either: the water below it is as deep
+        // as the water above it (its points bridge the column where water lies above them)
+        const std::size_t solidFrom = columns.size();
+        for (const SampledWall& w : out.walls)
+            if (!w.body && w.shape) sampleShape(*w.shape, dx, 0, columns);
+        std::vector<Scalar> depths = depthsBelowFreeSurface(columns, up, dx, dim, solidFrom);
         depths.resize(out.fluidPositions.size());
         for (std::size_t i = 0; i < depths.size(); ++i)
             if (hydrostaticParticle[i]) out.fluidDepths[i] = depths[i];

@@ -24,7 +24,8 @@
 // order; a position an earlier region fills is not filled again (OccupiedSpace: overlapping
 // regions are merged, a warning per region says how many positions it shared). A hydrostatic
 // start takes each particle's depth from the free surface above it, over every fluid region: the
-// top of the fluid in its column, down to the first gap of more than half a spacing. Each wall
+// top of the fluid in its column, down to the first gap of more than half a spacing (a solid wall
+// or body under water does not end the column). Each wall
 // entry is a wall system of its own, named after the entry; names of walls and blocks are words
 // of letters, digits, '_', '-' and '.' starting with a letter or '_' (a wall's name is a file
 // name, <name>.vtp, and a ParaView block name in the .pvd).
@@ -126,8 +127,11 @@ private:
 // Depth below the free surface above each of 'positions' along 'up' (a unit vector): from the
 // top of the particles in its column (cells of Δx across 'up') down to it, plus half a spacing;
 // a gap of more than 1.5 Δx between particles of a column starts a new surface below it.
+// positions[solidFrom...] are a solid's lattice points: they have no depth of their own and start no
+// surface, but bridge a column where water lies above them (the water under a submerged wall is
+// as deep as the water above it, whatever the gap between the solid and the water below it).
 std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar spacing,
-                                           int dimension);
+                                           int dimension, std::size_t solidFrom = std::size_t(-1));
 
 // How many particles sampleGeometry would make, from the sizes of the blocks and walls alone (no
 // sampling, nothing allocated; an upper bound: solids and open faces are not subtracted). A

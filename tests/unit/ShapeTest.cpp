@@ -256,3 +256,24 @@ TEST(Shape, InitialFieldsFromExpressions) {
     const std::string notFinite = errorOf([] { Expression("sqrt(x)", {"geometry", 4, 9}, "initialPressure")(Vec3(-1, 0, 0)); });
     EXPECT_NE(notFinite.find("must be finite"), std::string::npos) << notFinite;
 }
+
+TEST(Shape, WaterUnderASubmergedSolidStartsAsDeepAsTheWaterAboveIt) {
+    // a round pillar and a polygon rock under 0.5 m of water: every particle starts at
+    // p = ρ0 g (H − y), H = 0.5 (before, the water under a solid took its depth from its underside)
+    log::setQuiet(true);
+    const SampledGeometry g = sampleGeometry(
+        Dictionary::fromString("fluid { water { type box; min (0 0 0); max (1 0.5 0); initialPressure hydrostatic; } } "
+                               "walls { tank { type container; min (0 0 0); max (1 1 0); } "
+                               "        pillar { type cylinder; centre (0.3 0.2 0); radius 0.1; } "
+                               "        rock { type polygon; points ((0.6 0.1 0) (0.9 0.1 0) (0.75 0.3 0)); } }",
+                               "geometry"),
+        Scalar(0.01), 2, Vec3(0, -9.81, 0));
+    log::setQuiet(false);
+    std::size_t under = 0;
+    for (std::size_t i = 0; i < g.fluidPositions.size(); ++i) {
+        const Vec3& p = g.fluidPositions[i];
+        ASSERT_NEAR(g.fluidDepths[i], 0.5 - p[1], 1e-5) << "at (" << p[0] << " " << p[1] << ")";
+        under += (std::abs(p[0] - 0.3) < 0.05 && p[1] < 0.1) || (std::abs(p[0] - 0.75) < 0.05 && p[1] < 0.1);
+    }
+    EXPECT_GT(under, 50u) << "water under the solids";
+}
