@@ -146,8 +146,8 @@ TEST(Shape, BoxSamplesAsEver) {
     std::vector<Vec3> p;
     sampleShape(*b, Scalar(0.01), 0, p);
     ASSERT_EQ(p.size(), std::size_t(20 * 30));
-    EXPECT_NEAR(p.front()[0], 0.008, 1e-12);
-    EXPECT_NEAR(p.back()[1], 0.001 + 29.5 * 0.01, 1e-9);
+    EXPECT_NEAR(p.front()[0], 0.008, 1e-6);
+    EXPECT_NEAR(p.back()[1], 0.001 + 29.5 * 0.01, 1e-6);
     std::vector<Vec3> layers;
     sampleShape(*b, Scalar(0.01), Scalar(0.03), layers);
     EXPECT_EQ(layers.size(), std::size_t(20 * 30 - 14 * 24));
@@ -242,7 +242,7 @@ TEST(Shape, InitialFieldsFromExpressions) {
         EXPECT_NEAR(g.fluidVelocities[i][0], -100 * p[0], 1e-3);
         EXPECT_NEAR(g.fluidVelocities[i][1], 100 * p[1], 1e-3);
         EXPECT_EQ(g.fluidVelocities[i][2], 0);
-        EXPECT_NEAR(g.fluidPressures[i], 5e6 * (1 - p.squaredNorm()), 1);
+        EXPECT_NEAR(g.fluidPressures[i], 5e6 * (1 - p.squaredNorm()), 5);
     }
     const std::string bad = errorOf([] {
         sample("fluid { drop { type cylinder; centre (0 0 0); radius 1;\n velocity (\"-100*x\" \"100*(y\" 0); } }",
