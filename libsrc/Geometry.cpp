@@ -1,6 +1,8 @@
 #include "Geometry.hpp"
 
+#include "Expression.hpp"
 #include "Log.hpp"
+#include "Shape.hpp"
 
 #include <Eigen/Geometry> // cross, unitOrthogonal
 
@@ -68,9 +70,12 @@ void checkName(const Dictionary& parent, const std::string& name, const char* wh
                          name);
 }
 
-// Makes the box a whole number of spacings along each axis (its max moved to min + round(size/Δx)
-// Δx), with a warning at its entry when it was not: the lattice then fills it face to face.
+// A wall box (or a container's inside) must be a whole number of spacings along each axis for
+// the lattice to fill it face to face. One that is not is refused (its entry, `max`, the nearest
+// valid max values), unless the entry says `snapToLattice yes;`: then its max is moved to
+// min + round(size/Δx) Δx, which the log says.
 void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedName, Scalar dx, int dim) {
+    const bool snap = entry.getOrDefault<bool>("snapToLattice", false);
     for (int a = 0; a < dim; ++a) {
         const Scalar cells = std::round((box.max[a] - box.min[a]) / dx);
         // (the tolerance allows for the rounding of a float build as well)
@@ -79,22 +84,114 @@ void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedN
         if (std::abs(cells * dx - (box.max[a] - box.min[a])) > tolerance) {
             std::ostringstream s;
             s << scopedName << ": size along " << "xyz"[a] << " (" << box.max[a] - box.min[a]
-              << ") is not a multiple of particleSpacing " << dx << "; the wall is placed at max " << "xyz"[a] << " = "
-              << box.min[a] + cells * dx;
-            log::warning(locatedMessage(entry.locationOf("max"), "", s.str()));
+              << ") is not a multiple of particleSpacing " << dx;
+            if (!snap) {
+                const Scalar below = std::floor((box.max[a] - box.min[a]) / dx);
+                s << "; the nearest valid max " << "xyz"[a] << " are " << box.min[a] + std::max(Scalar(1), below) * dx
+                  << " and " << box.min[a] + (std::max(Scalar(1), below) + 1) * dx
+                  << " (or add 'snapToLattice yes;' to the entry to place it at " << box.min[a] + std::max(Scalar(1), cells) * dx
+                  << ")";
+                throw InputError(entry.locationOf("max"), s.str(), "max");
+            }
+            s << "; the wall is placed at max " << "xyz"[a] << " = " << box.min[a] + cells * dx << " (snapToLattice)";
+            log::info(locatedMessage(entry.locationOf("max"), "", s.str()));
             box.max[a] = box.min[a] + cells * dx;
         }
     }
 }
 
-// The lattice points of a solid box that lie within 'thickness' of its surface (its outermost
-// layers), appended to 'out'.
-void solidBoxLayers(const Box& box, Scalar thickness, Scalar dx, int dim, std::vector<Vec3>& out) {
-    forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
-        Scalar depth = std::numeric_limits<Scalar>::max();
-        for (int a = 0; a < dim; ++a) depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
-        if (depth < thickness) out.push_back(p);
-    });
+const std::vector<std::string>& wallTypes() {
+    static const std::vector<std::string> types = [] {
+        std::vector<std::string> t{"container"};
+        t.insert(t.end(), shapeTypes().begin(), shapeTypes().end());
+        return t;
+    }();
+    return types;
+}
+
+// A uniform solid's volume, centroid and inertia per unit density: a box's exactly (as ever),
+// any other shape's from its lattice points inside it, each Δx^dim of it (a point mass each; the
+// lattice's own error, O(Δx/size), is that of its particles).
+BodyMassProperties massProperties(const Shape& shape, Scalar dx) {
+    BodyMassProperties m;
+    const int dim = shape.dimension();
+    Vec3 lo, hi;
+    shape.bounds(lo, hi);
+    if (shape.isBox()) {
+        const Eigen::Vector3d size = (hi - lo).cast<double>();
+        m.volume = dim == 2 ? size[0] * size[1] : size[0] * size[1] * size[2];
+        m.centroid = 0.5 * (lo + hi).cast<double>();
+        if (dim == 2) m.centroid[2] = 0;
+        // the uniform box about its centre: I_xx = V (b² + c²)/12, ... (2D: the in-plane Izz)
+        m.inertia = Eigen::Matrix3d::Zero();
+        m.inertia(0, 0) = m.volume * (size[1] * size[1] + size[2] * size[2]) / 12;
+        m.inertia(1, 1) = m.volume * (size[0] * size[0] + size[2] * size[2]) / 12;
+        m.inertia(2, 2) = m.volume * (size[0] * size[0] + size[1] * size[1]) / 12;
+        return m;
+    }
+    std::vector<Vec3> points;
+    sampleShape(shape, dx, 0, points);
+    const double cell = dim == 2 ? double(dx) * double(dx) : double(dx) * double(dx) * double(dx);
+    m.volume = double(points.size()) * cell;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const Vec3& p : points) c += p.cast<double>();
+    if (!points.empty()) c /= double(points.size());
+    m.centroid = c;
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : points) {
+        const Eigen::Vector3d r = p.cast<double>() - c;
+        I += cell * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    if (dim == 2) { // a lamina per unit depth: only Izz = ∫ (x² + y²) matters
+        I(0, 1) = I(1, 0) = I(0, 2) = I(2, 0) = I(1, 2) = I(2, 1) = 0;
+    }
+    m.inertia = I;
+    return m;
+}
+
+// A fluid region's initial velocity: `velocity (u v w);`, each component a number or a quoted
+// expression of x, y, z (Expression.hpp).
+struct VelocityField {
+    Vec3 constant = Vec3::Zero();
+    std::unique_ptr<Expression> component[3];
+    Vec3 at(const Vec3& p, int dim) const {
+        Vec3 v = constant;
+        for (int a = 0; a < 3; ++a)
+            if (component[a]) v[a] = Scalar((*component[a])(p));
+        if (dim == 2) v[2] = 0;
+        return v;
+    }
+};
+
+VelocityField readVelocity(const Dictionary& f, int dim) {
+    VelocityField field;
+    const Entry* e = f.findEntry("velocity");
+    const bool expressions =
+        e && !e->isDict() && std::any_of(e->tokens.begin(), e->tokens.end(), [](const Token& t) {
+            return t.kind == Token::Kind::String;
+        });
+    if (!expressions) {
+        field.constant = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
+        if (dim == 2) field.constant[2] = 0;
+        return field;
+    }
+    f.markUsed("velocity");
+    const auto& t = e->tokens;
+    const bool shaped = t.size() == 5 && t.front().kind == Token::Kind::Open && t.back().kind == Token::Kind::Close;
+    for (std::size_t k = 1; shaped && k < 4; ++k) {
+        if (t[k].kind == Token::Kind::String) {
+            field.component[k - 1] = std::make_unique<Expression>(t[k].text, t[k].where, "velocity");
+        } else if (t[k].kind == Token::Kind::Number) {
+            field.constant[k - 1] = Scalar(std::stod(t[k].text));
+        } else {
+            throw InputError(t[k].where, "a component of 'velocity' must be a number or a quoted expression of x, y, "
+                             "z, e.g. velocity (\"-100*x\" \"100*y\" 0); found '" + t[k].text + "'", "velocity");
+        }
+    }
+    if (!shaped)
+        throw InputError(f.locationOf("velocity"), "'velocity' needs 3 components, each a number or a quoted "
+                         "expression of x, y, z, e.g. velocity (\"-100*x\" \"100*y\" 0);", "velocity");
+    return field;
 }
 
 int faceIndex(const std::string& face) {
@@ -107,8 +204,10 @@ int faceIndex(const std::string& face) {
 } // namespace
 
 bool SampledWall::occupies(const Vec3& p, int dim, Scalar margin) const {
-    const Box inner{min, max};
-    if (!container) return inner.contains(p, dim, -margin);
+    if (!container) {
+        if (shape) return shape->contains(p, -margin);
+        return Box{min, max}.contains(p, dim, -margin);
+    }
     // the shell: within 'thickness' outside the inner box, not inside it, not beyond an open face
     if (!Box{min - Vec3::Constant(thickness), max + Vec3::Constant(thickness)}.contains(p, dim, -margin)) return false;
     bool inShell = false;
@@ -196,7 +295,8 @@ bool OccupiedSpace::filled(const Vec3& p) const {
     return false;
 }
 
-std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar dx, int dim) {
+std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar dx, int dim,
+                                           std::size_t solidFrom) {
     const std::size_t n = positions.size();
     std::vector<Scalar> depth(n, Scalar(0));
     if (n == 0 || !(up.norm() > 0)) return depth;
@@ -212,18 +312,35 @@ std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, c
     std::vector<Item> items(n);
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3& p = positions[i];
-        items[i] = {std::lround(p.dot(across1) / dx), dim == 3 ? std::lround(p.dot(across2) / dx) : 0L, p.dot(up), i};
+        // (the cell's edges at k + 0.75 spacings: neither lattice of the case, (i + ½)Δx from the
+        // origin or from a box's min on a multiple of Δx, lies on one, where rounding would split
+        // the points of one column between two)
+        const auto cell = [&](const Vec3& axis) { return long(std::floor(p.dot(axis) / dx + Scalar(0.25))); };
+        items[i] = {cell(across1), dim == 3 ? cell(across2) : 0L, p.dot(up), i};
     }
     // each column from its top down
     std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
         return a.c1 != b.c1 ? a.c1 < b.c1 : a.c2 != b.c2 ? a.c2 < b.c2 : a.height > b.height;
     });
     const Scalar gap = Scalar(1.5) * dx;
-    Scalar surface = 0;
+    Scalar surface = 0, last = 0;
+    bool inWater = false, lastSolid = false;
     for (std::size_t k = 0; k < n; ++k) {
         const Item& it = items[k];
-        const bool newColumn = k == 0 || it.c1 != items[k - 1].c1 || it.c2 != items[k - 1].c2;
-        if (newColumn || items[k - 1].height - it.height > gap) surface = it.height + dx / 2;
+        if (k == 0 || it.c1 != items[k - 1].c1 || it.c2 != items[k - 1].c2) inWater = false;
+        if (it.index >= solidFrom) { // a solid: it bridges the water above it to the water below
+            if (inWater) {
+                last = it.height;
+                lastSolid = true;
+            }
+            continue;
+        }
+        // (the water keeps half a spacing clear of a solid's surface, more than that along a
+        // column where the surface is steep: the water next below a bridging solid continues it)
+        if (!inWater || (!lastSolid && last - it.height > gap)) surface = it.height + dx / 2;
+        inWater = true;
+        last = it.height;
+        lastSolid = false;
         depth[it.index] = surface - it.height;
     }
     return depth;
@@ -248,6 +365,10 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
     if (const Dictionary* walls = geometry.findDict("walls"))
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
+            if (w.getWord("type", wallTypes()) != "container") {
+                add(latticePointCount(*readShape(w, dim, dx), dx), "walls." + name, walls->locationOf(name));
+                continue;
+            }
             const Box box = readBox(w, dim);
             const double layers = w.getOrDefault<double>("layers", 3);
             Vec3 lo = box.min, hi = box.max;
@@ -255,36 +376,31 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
                 lo[a] -= Scalar(layers * dx);
                 hi[a] += Scalar(layers * dx);
             }
-            add(w.getWordOrDefault("type", {"container", "box"}, "box") == "container"
-                    ? std::max(0.0, points(lo, hi) - points(box.min, box.max))
-                    : points(box.min, box.max),
-                "walls." + name, walls->locationOf(name));
+            add(std::max(0.0, points(lo, hi) - points(box.min, box.max)), "walls." + name, walls->locationOf(name));
         }
     if (const Dictionary* fluid = geometry.findDict("fluid"))
         for (const auto& name : fluid->keywords()) {
-            const Box box = readBox(fluid->subDict(name), dim);
-            const double n = points(box.min, box.max);
+            const double n = latticePointCount(*readShape(fluid->subDict(name), dim, dx), dx);
             add(n, "fluid." + name, fluid->locationOf(name));
             e.fluid += n;
         }
     if (const Dictionary* bodies = geometry.findDict("bodies"))
         for (const auto& name : bodies->keywords()) {
-            const Box box = readBox(bodies->subDict(name), dim);
-            add(points(box.min, box.max), "bodies." + name, bodies->locationOf(name));
+            add(latticePointCount(*readShape(bodies->subDict(name), dim, dx), dx), "bodies." + name,
+                bodies->locationOf(name));
         }
     return e;
 }
 
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, const Vec3& gravity) {
     SampledGeometry out;
-    std::vector<Box> solids;
+    std::vector<std::shared_ptr<const Shape>> solids;
     std::vector<std::pair<std::string, Box>> containers;
 
     if (const Dictionary* walls = geometry.findDict("walls")) {
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
-            const std::string type = w.getWord("type", {"container", "box"});
-            const Box box = readBox(w, dim);
+            const std::string type = w.getWord("type", wallTypes());
             const int layers = w.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
             const Scalar L = layers * dx;
@@ -301,6 +417,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             w.markUsed("motion");
             std::vector<Vec3>& wallPositions = sampled.positions;
             if (type == "container") {
+                const Box box = readBox(w, dim);
                 containers.emplace_back(name, box);
                 bool open[6] = {false, false, false, false, false, false};
                 for (const auto& face : w.getOrDefault<std::vector<std::string>>("open", {})) {
@@ -336,13 +453,18 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                     }
                     if (outside) wallPositions.push_back(p);
                 });
-            } else { // solid box: outermost layers inside the surface
-                Box solid = box;
-                snapToLattice(solid, w, "walls." + name, dx, dim);
-                solids.push_back(solid);
-                sampled.min = solid.min;
-                sampled.max = solid.max;
-                solidBoxLayers(solid, L, dx, dim, wallPositions);
+            } else { // a solid: the `layers` outermost lattice layers inside its surface
+                std::unique_ptr<Shape> shape = readShape(w, dim, dx);
+                if (shape->isBox()) { // a box is a whole number of spacings (or snapped to one)
+                    Box solid;
+                    shape->bounds(solid.min, solid.max);
+                    snapToLattice(solid, w, "walls." + name, dx, dim);
+                    shape = makeBox(solid.min, solid.max, dim);
+                }
+                sampled.shape = std::move(shape);
+                solids.push_back(sampled.shape);
+                sampled.shape->bounds(sampled.min, sampled.max);
+                sampleShape(*sampled.shape, dx, L, wallPositions);
             }
             if (wallPositions.empty())
                 throw InputError(w.where(), "wall '" + name + "' produced no particles (is it smaller than particleSpacing?)");
@@ -355,21 +477,21 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     if (const Dictionary* bodies = geometry.findDict("bodies")) {
         for (const auto& name : bodies->keywords()) {
             const Dictionary& b = bodies->subDict(name);
-            b.getWord("type", {"box"});
-            const Box box = readBox(b, dim);
+            std::shared_ptr<const Shape> shape = readShape(b, dim, dx);
             const int layers = b.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(b.locationOf("layers"), "'layers' must be at least 1", "layers");
             if (name == "fluid" || (geometry.findDict("walls") && geometry.subDict("walls").found(name)))
                 throw InputError(bodies->locationOf(name), "a body may not share its name with the fluid or a wall", name);
             checkName(*bodies, name, "body");
-            solids.push_back(box);
+            solids.push_back(shape);
             SampledWall& sampled = out.walls.emplace_back();
             sampled.name = name;
             sampled.where = bodies->locationOf(name);
-            sampled.min = box.min;
-            sampled.max = box.max;
+            shape->bounds(sampled.min, sampled.max);
+            sampled.shape = shape;
             sampled.body = &b;
-            solidBoxLayers(box, layers * dx, dx, dim, sampled.positions);
+            sampled.mass = massProperties(*shape, dx);
+            sampleShape(*shape, dx, layers * dx, sampled.positions);
             if (sampled.positions.empty())
                 throw InputError(b.where(), "body '" + name + "' produced no particles (is it smaller than particleSpacing?)");
         }
@@ -409,8 +531,9 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
         checkName(fluid, name, "fluid block");
-        f.getWord("type", {"box"});
-        const Box box = readBox(f, dim);
+        const std::unique_ptr<Shape> shape = readShape(f, dim, dx);
+        Box box;
+        shape->bounds(box.min, box.max);
         if (!containers.empty()) {
             const Scalar tol = Scalar(1e-9) + Scalar(1e-6) * dx;
             bool inside = false;
@@ -433,9 +556,17 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 throw InputError(f.where(), s.str());
             }
         }
-        Vec3 velocity = f.getOrDefault<Vec3>("velocity", Vec3::Zero());
-        if (dim == 2) velocity[2] = 0;
-        const bool hydrostatic = f.getWordOrDefault("initialPressure", {"zero", "hydrostatic"}, "zero") == "hydrostatic";
+        const VelocityField velocity = readVelocity(f, dim);
+        // initialPressure zero | hydrostatic | "<expression of x, y, z>"
+        std::unique_ptr<Expression> pressure;
+        bool hydrostatic = false;
+        if (const Entry* e = f.findEntry("initialPressure");
+            e && !e->isDict() && e->tokens.size() == 1 && e->tokens[0].kind == Token::Kind::String) {
+            f.markUsed("initialPressure");
+            pressure = std::make_unique<Expression>(e->tokens[0].text, e->tokens[0].where, "initialPressure");
+        } else {
+            hydrostatic = f.getWordOrDefault("initialPressure", {"zero", "hydrostatic"}, "zero") == "hydrostatic";
+        }
         const Scalar g = gravity.norm();
         if (hydrostatic && !(g > 0))
             throw InputError(f.locationOf("initialPressure"), "initialPressure hydrostatic needs gravity "
@@ -444,17 +575,21 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         const std::size_t before = out.fluidPositions.size();
         std::size_t shared = 0;
         occupied.beginRegion(out.fluidPositions, box.min, box.max);
-        forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
-            for (const auto& s : solids)
-                if (s.contains(p, dim, solidClearance)) return;
+        std::vector<Vec3> candidates;
+        sampleShape(*shape, dx, 0, candidates);
+        for (const Vec3& p : candidates) {
+            bool inSolid = false;
+            for (const auto& s : solids) inSolid = inSolid || s->contains(p, solidClearance);
+            if (inSolid) continue;
             if (occupied.filled(p)) {
                 ++shared;
-                return;
+                continue;
             }
             out.fluidPositions.push_back(p);
-            out.fluidVelocities.push_back(velocity);
+            out.fluidVelocities.push_back(velocity.at(p, dim));
+            out.fluidPressures.push_back(pressure ? Scalar((*pressure)(p)) : Scalar(0));
             hydrostaticParticle.push_back(hydrostatic);
-        });
+        }
         occupied.endRegion(out.fluidPositions);
         const std::size_t count = out.fluidPositions.size() - before;
         out.fluidBlocks.push_back({name, fluid.locationOf(name), before, count, box.min, box.max});
@@ -476,12 +611,14 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         // a body in the water does not end its column: the water below it bears it (filled with
         // its lattice for the columns, exact for a body of the water's density)
         std::vector<Vec3> columns = out.fluidPositions;
-        if (const Dictionary* bodies = geometry.findDict("bodies"))
-            for (const auto& name : bodies->keywords()) {
-                const Box box = readBox(bodies->subDict(name), dim);
-                forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) { columns.push_back(p); });
-            }
-        std::vector<Scalar> depths = depthsBelowFreeSurface(columns, up, dx, dim);
+        for (const SampledWall& w : out.walls)
+            if (w.body) sampleShape(*w.shape, dx, 0, columns);
+        // a solid wall under water does not end its column either: the water below it is as deep
+        // as the water above it (its points bridge the column where water lies above them)
+        const std::size_t solidFrom = columns.size();
+        for (const SampledWall& w : out.walls)
+            if (!w.body && w.shape) sampleShape(*w.shape, dx, 0, columns);
+        std::vector<Scalar> depths = depthsBelowFreeSurface(columns, up, dx, dim, solidFrom);
         depths.resize(out.fluidPositions.size());
         for (std::size_t i = 0; i < depths.size(); ++i)
             if (hydrostaticParticle[i]) out.fluidDepths[i] = depths[i];

@@ -1,39 +1,53 @@
-// Spindrift — constant/geometry: fluid blocks and walls sampled into particles on the lattice
-// of spacing Δx.
+// Spindrift — constant/geometry: fluid regions, walls and bodies sampled into particles on the
+// lattice of spacing Δx.
 //
-//   fluid { <name> { type box; min (..); max (..); velocity (0 0 0); initialPressure zero; } ... }
-//           initialPressure hydrostatic: the block starts at p = ρ0 |g| (depth below its top)
+//   fluid { <name> { <shape>; velocity (0 0 0); initialPressure zero; } ... }
+//           velocity: each component a number or a quoted expression of x, y, z (Expression.hpp);
+//           initialPressure zero | hydrostatic (p = ρ0 |g| depth below its top) | "<expression>"
 //   walls { <name> { type container; min (..); max (..); layers 3; open (yMax); }   // hollow box
-//           <name> { type box; min (..); max (..); layers 3;                        // solid block
+//           <name> { <shape>; layers 3;                                            // a solid
 //                    motion { type linear; velocity (0.5 0 0); } } ... }           // optional (Motion.hpp)
-//   bodies { <name> { type box; min (..); max (..); layers 3; density 500; ... } }  // rigid bodies
-//           (sampled as solid blocks; their mass, inertia and constraints: RigidBodySetUp.hpp)
+//   bodies { <name> { <shape>; layers 3; density 500; ... } }  // rigid bodies
+//           (sampled as solids; their mass, inertia and constraints: RigidBody::read)
 //   periodic { x (0 1); }   // optional: axis (min max); leaving at max re-enters at min
+//   <shape>: type box | cylinder | sphere | polygon, and optionally subtract { ... } (Shape.hpp)
 //
-// Fluid particles sit at min + (i + ½)Δx. A container's wall particles continue that lattice
+// A shape's particles are its lattice points inside it (Shape.hpp: a box's lattice from its min,
+// every other shape's from the origin). A container's wall particles continue the lattice
 // outwards: layer k of a face lies (k + ½)Δx outside it, so the effective wall is the face
-// itself. A solid box keeps the `layers` outermost lattice layers inside its surface. A wall whose
-// size is not a whole number of Δx along an axis is made so, its max moved to min + round(size/Δx)
-// Δx (a warning names the entry): its particles then fill it to its faces. Fluid particles inside
-// a solid wall, or nearer its face than half a spacing, are removed (so no fluid particle starts
-// nearer a wall particle than Δx). Fluid blocks are filled in file order; a position an earlier
-// block fills is not filled again (OccupiedSpace: overlapping blocks are merged, a warning per
-// block says how many positions it shared). A hydrostatic start takes each particle's depth from
-// the free surface above it, over every fluid block: the top of the fluid in its column, down to
-// the first gap of more than half a spacing. Each wall entry is a wall system of its own, named
-// after the entry; names of walls and blocks are words of letters, digits, '_', '-' and '.'
-// starting with a letter or '_' (a wall's name is a file name, <name>.vtp, and a ParaView block
-// name in the .pvd). Room for cylinders, spheres and STL later: each shape is one `type`.
+// itself. A solid keeps the `layers` outermost lattice layers inside its surface. A wall box or
+// container whose size is not a whole number of Δx along an axis is refused (the error gives the
+// nearest valid max), unless its entry says `snapToLattice yes;`: its max is then moved to
+// min + round(size/Δx) Δx (the log says so) and its particles fill it to its faces. Fluid
+// particles inside a solid wall or body, or nearer its surface than half a spacing, are removed
+// (so no fluid particle starts nearer a wall particle than Δx). Fluid regions are filled in file
+// order; a position an earlier region fills is not filled again (OccupiedSpace: overlapping
+// regions are merged, a warning per region says how many positions it shared). A hydrostatic
+// start takes each particle's depth from the free surface above it, over every fluid region: the
+// top of the fluid in its column, down to the first gap of more than half a spacing (a solid wall
+// or body under water does not end the column). Each wall
+// entry is a wall system of its own, named after the entry; names of walls and blocks are words
+// of letters, digits, '_', '-' and '.' starting with a letter or '_' (a wall's name is a file
+// name, <name>.vtp, and a ParaView block name in the .pvd).
 #pragma once
 
 #include "Dictionary.hpp"
 #include "NeighbourSearch.hpp"
+#include "Shape.hpp"
 #include "Types.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace spindrift {
+
+// A uniform solid body's volume (2D: area), centroid and inertia about it per unit density.
+struct BodyMassProperties {
+    double volume = 0;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
 
 struct SampledWall {
     std::string name;
@@ -41,7 +55,10 @@ struct SampledWall {
     std::vector<Vec3> positions;
     const Dictionary* motion = nullptr; // the entry's `motion { }`, read by the caller (Motion::read)
     const Dictionary* body = nullptr;   // a `bodies` entry: the whole entry (rigidBodyFrom reads it)
-    // The space it occupies as sampled: a solid box [min, max], or a container's shell, 'thickness'
+    // A solid wall's or body's shape (none for a container); [min, max] its bounds.
+    std::shared_ptr<const Shape> shape;
+    BodyMassProperties mass; // a body's, of its shape
+    // The space it occupies as sampled: a solid shape, or a container's shell, 'thickness'
     // (its layers) outside [min, max] less the slabs beyond its open faces (xMin xMax yMin ...).
     bool container = false;
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();
@@ -67,6 +84,8 @@ struct SampledGeometry {
     // fluid in its column), where its block starts hydrostatic (initialPressure hydrostatic), else
     // 0: the start gives it p = ρ0 |g| depth
     std::vector<Scalar> fluidDepths;
+    // each fluid particle's initial pressure from its region's `initialPressure "<expression>"`, else 0
+    std::vector<Scalar> fluidPressures;
     std::vector<SampledBlock> fluidBlocks;
     std::vector<SampledWall> walls;
     Vec3 boundsMin = Vec3::Zero(), boundsMax = Vec3::Zero(); // of everything sampled
@@ -108,8 +127,11 @@ private:
 // Depth below the free surface above each of 'positions' along 'up' (a unit vector): from the
 // top of the particles in its column (cells of Δx across 'up') down to it, plus half a spacing;
 // a gap of more than 1.5 Δx between particles of a column starts a new surface below it.
+// positions[solidFrom...] are a solid's lattice points: they have no depth of their own and start no
+// surface, but bridge a column where water lies above them (the water under a submerged wall is
+// as deep as the water above it, whatever the gap between the solid and the water below it).
 std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, const Vec3& up, Scalar spacing,
-                                           int dimension);
+                                           int dimension, std::size_t solidFrom = std::size_t(-1));
 
 // How many particles sampleGeometry would make, from the sizes of the blocks and walls alone (no
 // sampling, nothing allocated; an upper bound: solids and open faces are not subtracted). A

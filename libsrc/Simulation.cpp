@@ -371,6 +371,7 @@ void Simulation::buildParticles() {
         fluid.id()[i] = Index(i);
     }
     initialDepths_ = g.fluidDepths;
+    initialPressures_ = g.fluidPressures;
     std::vector<DomainEntry> entries;
     for (const SampledBlock& b : g.fluidBlocks) {
         Vec3 lo = b.min, hi = b.max;
@@ -393,7 +394,8 @@ void Simulation::buildParticles() {
         }
         if (sampled.body) {
             w.body = std::make_unique<RigidBody>(
-                RigidBody::read(*sampled.body, sampled.min, sampled.max, physics.dimension));
+                RigidBody::read(*sampled.body, sampled.mass.volume, sampled.mass.centroid, sampled.mass.inertia,
+                                physics.dimension));
             sampled.body->checkAllKeywordsUsed();
             // where it may go: anywhere in the sampled domain (a body moves with the fluid)
             std::ostringstream m;
@@ -506,7 +508,7 @@ void Simulation::applyInitialPressure() {
     auto& fluid = fluid_->particles;
     const Scalar rhoG = scene_.physics.rho0 * scene_.physics.gravity.norm();
     for (std::size_t i = 0; i < fluid.size(); ++i) {
-        const Scalar p = rhoG * initialDepths_[i];
+        const Scalar p = rhoG * initialDepths_[i] + initialPressures_[i];
         fluid.pressure()[i] = p;
         fluid.density()[i] = scene_.constants.densityAt(p);
     }

@@ -187,6 +187,7 @@ private:
     double deltaTCap_ = std::numeric_limits<double>::infinity();
     int deltaTHoldSteps_ = 0;
     std::vector<Scalar> initialDepths_; // of the fluid particles, where their block starts hydrostatic
+    std::vector<Scalar> initialPressures_; // of the fluid particles, where their block gives it as an expression
     ParticleSystem* fluid_ = nullptr;   // the fluid system constant/geometry's fluid blocks make
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
     Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up

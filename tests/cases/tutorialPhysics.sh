@@ -44,3 +44,8 @@ first=$(dirname "$(find . -maxdepth 2 -name fluid.vtp | sort -t/ -k2 -g | head -
 systems=$(find "$first" -maxdepth 1 -name '*.vtp' | wc -l)
 "$pvpython" "$here/pvpython_check.py" --blocks "$systems" "$(basename "$case").pvd" "$times" velocity pressure density id
 "$pvpython" "$here/tutorialPhysics.py" . "$@"
+# a tutorial's own check, run in the case (e.g. "semiAxes.py . --tolerance 0.01"): $TUTORIAL_CHECK
+if [ -n "${TUTORIAL_CHECK:-}" ]; then
+    # shellcheck disable=SC2086 # (the script and its arguments)
+    "$pvpython" $TUTORIAL_CHECK
+fi
