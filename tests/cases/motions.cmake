@@ -1,0 +1,21 @@
+# Tutorials of moving walls (issue 38 items 4, 5): each run as a user runs it, then its own check
+# script (tutorials/<case>/check*.py) on what it wrote (tutorialScript.sh). Measured values in the
+# comments (docs/VALIDATION.md "Wave makers and rolling").
+if(PVPYTHON)
+  function(tutorial_script name tutorial edits script)
+    add_test(NAME Tutorial.${name}
+      COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tutorialScript.sh $<TARGET_FILE:spindriftSolver>
+              ${PROJECT_SOURCE_DIR}/tutorials/${tutorial} ${PVPYTHON} "${edits}" ${script} ${ARGN})
+    set_tests_properties(Tutorial.${name} PROPERTIES
+      ENVIRONMENT "${SPINDRIFT_CASE_TEST_ENV};SPINDRIFT_DIR=${PROJECT_SOURCE_DIR}" TIMEOUT 900 LABELS tutorial)
+  endfunction()
+endif()
+
+if(PVPYTHON)
+  # rollingTank3D, quick mode: Δx 0.02 instead of 0.015 and 2 s of 5 s (the roll ramped up over
+  # the first second, then half a period): no particle lost or outside the rolling tank (the
+  # nearest 0.55 Δx inside a face), volume within 0.01 %, the surface's forced slope in the tank's
+  # frame 1.01 tan(roll) (linear sloshing's gain 1.53 at T = 2 s, T1 = 1.175 s), fit R² 0.985
+  tutorial_script(rollingTank3D rollingTank3D
+    "constant/fluidProperties:particleSpacing=0.02,system/controlDict:endTime=2" checkRolling.py --from 1)
+endif()
