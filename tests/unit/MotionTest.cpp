@@ -104,11 +104,13 @@ TEST(Motion, EveryMotionIsAtRestInItsDrawnPoseBeforeItsStart) {
         "type flapWaveMaker; waveHeight 0.08; period 1.2; depth 0.5; hinge (0 0 0); startTime 0.5;"};
     for (const std::string& text : texts) {
         const auto m = motionOf(text, context(2));
-        for (double t : {0.0, 0.25, 0.5}) {
+        for (double t : {0.0, 0.25, 0.5}) { // in its drawn pose up to its start (velocity may jump there)
             const RigidState s = m->state(t);
             EXPECT_EQ(s.translation, V3::Zero()) << text;
             EXPECT_NEAR((s.rotation - Eigen::Matrix3d::Identity()).norm(), 0, 1e-15) << text;
-            EXPECT_EQ(s.velocity.norm() + s.omega.norm(), 0) << text;
+            if (t < 0.5) {
+                EXPECT_EQ(s.velocity.norm() + s.omega.norm(), 0) << text;
+            }
         }
         // ramped wave makers also start without a jump in velocity or acceleration
         if (text.find("WaveMaker") != std::string::npos) {
