@@ -534,8 +534,10 @@ void Motion::sweptRange(double t0, double t1, const Vec3& wallLo, const Vec3& wa
             previous[c] = x;
         }
     }
-    lo = (l - V3::Constant(pad)).cast<Scalar>();
-    hi = (h + V3::Constant(pad)).cast<Scalar>();
+    // between two samples a corner strays from the chord joining them by at most half its length
+    // (the sagitta of an arc of up to half a turn; the overshoot of an oscillation's peak)
+    lo = (l - V3::Constant(pad / 2)).cast<Scalar>();
+    hi = (h + V3::Constant(pad / 2)).cast<Scalar>();
 }
 
 std::unique_ptr<Motion> Motion::read(const Dictionary& d, const MotionContext& c) {

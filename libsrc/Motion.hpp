@@ -94,7 +94,7 @@ public:
     }
 
     // The box swept over [t0, t1] by a wall drawn inside the box [wallLo, wallHi] (for the
-    // neighbour grid's domain): its corners sampled, padded by the most a point moves between samples.
+    // neighbour grid's domain): its corners sampled, padded by half the most a corner moves between samples.
     void sweptRange(double t0, double t1, const Vec3& wallLo, const Vec3& wallHi, Vec3& lo, Vec3& hi) const;
 
     // Reads `motion { type ...; }` for a run from runStart to runEnd; errors name the
