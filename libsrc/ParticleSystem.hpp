@@ -4,7 +4,7 @@
 // Every system is a named particle set with a role:
 //   fluid    integrated by the integrator, with the models' forces (rest density ρ0 and a
 //            particle mass of its own: two fluids of different ρ0 are two systems);
-//   wall     a boundary: fixed, or moving with a prescribed Motion (x_b(t) = x_b(0) + d(t));
+//   wall     a boundary: fixed, or moving with a prescribed Motion (x_b(t) = c + R(t)(x_b(0) − c) + d(t));
 //   body     a boundary moved by the fluid: a rigid body whose state (RigidBody.hpp) the core
 //            advances with the fluid's force and moment on it and gravity;
 //   passive  particles carried by the flow, never acting on it (tracers, the diffuse particles

@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <iterator>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <sys/resource.h>
@@ -409,29 +410,40 @@ void Simulation::buildParticles() {
                                wallLo, wallHi});
             continue;
         }
-        w.motion = Motion::read(*sampled.motion, dim, startTime, endTime);
-        Vec3 lo, hi;
-        w.motion->sweptRange(startTime, endTime, lo, hi);
-        sweptLo = sweptLo.cwiseMin(wallLo + lo);
-        sweptHi = sweptHi.cwiseMax(wallHi + hi);
-        entries.push_back({"wall '" + sampled.name + "' (over its motion)", sampled.motion->where(), "motion",
-                           wallLo + lo, wallHi + hi});
+        MotionContext context;
+        context.dimension = dim;
+        context.runStart = startTime;
+        context.runEnd = endTime;
+        context.caseDir = case_.dir;
+        context.gravity = physics.gravity.cast<double>();
+        w.motion = Motion::read(*sampled.motion, context);
+        Vec3 lo, hi; // the wall's bounds over its motion (a rotating wall's corners)
+        w.motion->sweptRange(startTime, endTime, wallLo, wallHi, lo, hi);
+        if (dim == 2) lo[2] = hi[2] = 0;
+        sweptLo = sweptLo.cwiseMin(lo);
+        sweptHi = sweptHi.cwiseMax(hi);
+        entries.push_back({"wall '" + sampled.name + "' (over its motion)", sampled.motion->where(), "motion", lo, hi});
         log::info("Wall '" + sampled.name + "' moves: " + w.motion->describe());
         // The fluid is drawn against the walls where constant/geometry puts them (a motion's
         // displacement is zero at its startTime). A wall its motion has already moved by the
         // run's start (the run starting after the motion's startTime) must not start inside
         // the fluid: what the wall would have pushed is unknown, so the overlap is an error.
-        const Vec3 d0 = w.motion->displacement(startTime);
-        if (d0 != Vec3::Zero()) {
+        const RigidState s0 = w.motion->state(startTime);
+        const Vec3 d0 = s0.translation.cast<Scalar>();
+        if (d0 != Vec3::Zero() || s0.rotation != Eigen::Matrix3d::Identity()) {
             std::size_t overlapping = 0, first = g.fluidPositions.size();
             for (std::size_t i = 0; i < g.fluidPositions.size(); ++i)
-                if (sampled.occupies(g.fluidPositions[i] - d0, dim, Scalar(0.01) * physics.particleSpacing)) {
+                if (sampled.occupies(w.motion->drawnPosition(s0, g.fluidPositions[i].cast<double>()).cast<Scalar>(), dim,
+                                     Scalar(0.01) * physics.particleSpacing)) {
                     ++overlapping;
                     first = std::min(first, i);
                 }
             std::ostringstream where;
             where << std::setprecision(6) << "wall '" << sampled.name << "' starts at time " << startTime
-                  << " displaced by (" << d0[0] << " " << d0[1] << " " << d0[2] << ") by its motion";
+                  << " displaced by (" << d0[0] << " " << d0[1] << " " << d0[2] << ")";
+            if (s0.rotation != Eigen::Matrix3d::Identity())
+                where << " and rotated by " << Eigen::AngleAxisd(s0.rotation).angle() * 180 / std::numbers::pi << " deg";
+            where << " by its motion";
             if (overlapping > 0) {
                 std::string block;
                 for (const SampledBlock& b : g.fluidBlocks)

@@ -112,6 +112,8 @@ private:
     // Moves the moving walls to where their motion puts them at 'time' (positions, velocities,
     // accelerations).
     void placeMovingWalls(double time);
+    // The speed of a moving wall's fastest particle at 'time' (a bound: translation and rotation).
+    double wallSpeed(const ParticleSystem& wall, double time) const;
     // Places the moving walls at 'time' and makes the neighbour lists those of the systems' current
     // positions with the boundaries there (kept when they are already).
     void updateLists(double time);

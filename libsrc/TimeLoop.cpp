@@ -73,12 +73,35 @@ void Simulation::resolveContacts(ParticleSystem& b) {
 void Simulation::placeMovingWalls(double time) {
     for (ParticleSystem* w : scene_.ofRole(SystemRole::wall)) {
         if (!w->motion) continue;
-        const Vec3 d = w->motion->displacement(time), v = w->motion->velocity(time), a = w->motion->acceleration(time);
+        // x = c + R (x0 − c) + d, v = d' + ω × r, a = d'' + α × r + ω × (ω × r), r = x − c − d
+        // (Motion.hpp), in double for every particle: a function of time alone
+        const Motion& m = *w->motion;
+        const RigidState st = m.state(time);
         auto& x = w->particles.position();
-        forEachIndex(x.size(), [&](std::size_t b) { x[b] = w->initialPosition[b] + d; });
-        std::fill(w->particles.velocity().begin(), w->particles.velocity().end(), v);
-        std::fill(w->particles.acceleration().begin(), w->particles.acceleration().end(), a);
+        auto& v = w->particles.velocity();
+        auto& a = w->particles.acceleration();
+        const auto& x0 = w->initialPosition;
+        forEachIndex(x.size(), [&](std::size_t b) {
+            const Eigen::Vector3d xb = m.position(st, x0[b].cast<double>());
+            x[b] = xb.cast<Scalar>();
+            v[b] = m.velocityAt(st, xb).cast<Scalar>();
+            a[b] = m.accelerationAt(st, xb).cast<Scalar>();
+        });
     }
+}
+
+double Simulation::wallSpeed(const ParticleSystem& w, double time) const {
+    // the fastest particle of a moving wall at 'time': |d'| + |ω| max|x0 − c| bounds it
+    const Motion& m = *w.motion;
+    const RigidState st = m.state(time);
+    double speed = st.velocity.norm();
+    if (st.omega.squaredNorm() > 0) {
+        const Eigen::Vector3d c = m.centre();
+        const auto& x0 = w.initialPosition;
+        const double r2 = parallelMax(x0.size(), [&](std::size_t b) { return (x0[b].cast<double>() - c).squaredNorm(); });
+        speed += st.omega.norm() * std::sqrt(r2);
+    }
+    return speed;
 }
 
 void Simulation::updateLists(double time) {
@@ -131,8 +154,8 @@ double Simulation::stableDeltaT() const {
         vMax = std::max(vMax, std::sqrt(parallelMax(f->ownedSize(), [&](std::size_t i) { return v[i].squaredNorm(); })));
         aMax = std::max(aMax, std::sqrt(parallelMax(f->ownedSize(), [&](std::size_t i) { return a[i].squaredNorm(); })));
     }
-    for (const ParticleSystem* w : s.boundaries()) // a moving wall's speed over the step (it is uniform over the wall)
-        if (w->motion) vMax = std::max(vMax, double(w->motion->velocity(s.time).norm()));
+    for (const ParticleSystem* w : s.boundaries()) // a moving wall's fastest particle
+        if (w->motion) vMax = std::max(vMax, wallSpeed(*w, s.time));
     const double c0 = s.constants.soundSpeed;
     double dt = std::numeric_limits<double>::infinity();
     if (c0 + vMax > 0) dt = time_->maxCo() * h / (c0 + vMax);
@@ -458,7 +481,7 @@ RunSummary Simulation::run() {
         for (const ParticleSystem* f : s.ofRole(SystemRole::fluid))
             for (const auto& v : f->particles.velocity()) vMax0 = std::max(vMax0, double(v.norm()));
         for (const ParticleSystem* w : s.boundaries())
-            if (w->motion) vMax0 = std::max(vMax0, double(w->motion->velocity(s.time).norm()));
+            if (w->motion) vMax0 = std::max(vMax0, wallSpeed(*w, s.time));
         blowUpSpeedAuto_ = std::max({blowUpSpeedFloor_, 100 * double(s.constants.soundSpeed), 100 * vMax0, 1.0});
         blowUpSpeed_ = blowUpSpeedSetting_ > 0 ? blowUpSpeedSetting_ : blowUpSpeedAuto_;
     }

@@ -50,7 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 // a motion read for a run from 0 to 1 is finite over it (Motion::read checks)
                 const auto motion = Motion::read(*w.motion, physics.dimension, 0.0, 1.0);
                 Vec3 lo, hi;
-                motion->sweptRange(0.0, 1.0, lo, hi);
+                motion->sweptRange(0.0, 1.0, w.min, w.max, lo, hi);
                 check(lo.allFinite() && hi.allFinite() && motion->displacement(0.5).allFinite());
                 (void)motion->describe();
             }
