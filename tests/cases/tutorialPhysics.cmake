@@ -68,6 +68,23 @@ if(PVPYTHON)
     --max-density-error 0.01 --volume 0.01)
   set_property(TEST Tutorial.ellipticalDrop2D APPEND PROPERTY ENVIRONMENT
     "TUTORIAL_CHECK=semiAxes.py . --tolerance 0.01 --minor-tolerance 0.02")
+
+  # Moving walls (issue 38 items 4, 5), each with its own check script (TUTORIAL_CHECK, run in the
+  # case after tutorialPhysics.py). rollingTank3D, quick mode: dx 0.02 instead of 0.015 and 2 s of 5 s
+  # (the roll ramped up over the first second, then half a period): no particle lost or outside the
+  # rolling tank (the nearest 0.46 dx inside a face), volume within 0.02 %, the surface's forced
+  # slope in the tank's frame 1.33 tan(roll) (linear sloshing's gain 1.53 at T = 2 s, T1 = 1.175 s),
+  # fit R^2 0.993
+  tutorial_physics(rollingTank3D rollingTank3D "constant/fluidProperties:particleSpacing=0.02,system/controlDict:endTime=2"
+    --volume 0.01)
+  set_property(TEST Tutorial.rollingTank3D APPEND PROPERTY ENVIRONMENT "TUTORIAL_CHECK=checkRolling.py --from 1")
+  # waveTank2D, quick mode: dx 0.04 instead of 0.02 (H/dx 2.5) and 12 s of 13, the first gauge
+  # (2 wavelengths): period within 1 %, height 0.4-1.05 H (measured: 3 waves, T -0.45 %,
+  # H 0.0595 m = -40 %; the full case at dx 0.02: T -0.23 %, H -29 %: docs/VALIDATION.md)
+  tutorial_physics(waveTank2D waveTank2D "constant/fluidProperties:particleSpacing=0.04,system/controlDict:endTime=12"
+    --inside --volume 0.01)
+  set_property(TEST Tutorial.waveTank2D APPEND PROPERTY ENVIRONMENT
+    "TUTORIAL_CHECK=checkWaves.py --gauges 0 --height-range 0.4 1.05")
 endif()
 
 # damBreakObstacle3D (SPHERIC benchmark 2) in quick mode, dx = 0.55/10 m to 1.6 s: the water passes
