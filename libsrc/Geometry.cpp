@@ -1,11 +1,14 @@
 #include "Geometry.hpp"
 
 #include "Log.hpp"
+#include "SurfaceSampling.hpp"
+#include "TriangleMesh.hpp"
 
 #include <Eigen/Geometry> // cross, unitOrthogonal
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -104,9 +107,48 @@ int faceIndex(const std::string& face) {
     return -1;
 }
 
+// A `type mesh` entry's surface: constant/triSurface/<file> (next to constant/geometry) read,
+// placed (scale, then rotate (α β γ) degrees about x, y, z, then translate) and checked. A closed
+// surface ('closed' needed, or found) must be consistently oriented with its normals outwards.
+std::shared_ptr<TriangleMesh> readMesh(const Dictionary& d, bool needClosed, const char* why) {
+    const std::string file = d.get<std::string>("file");
+    const std::filesystem::path dir = std::filesystem::path(d.where().file).parent_path() / "triSurface";
+    auto mesh = std::make_shared<TriangleMesh>(TriangleMesh::read(dir / file, d.locationOf("file")));
+    const double scale = d.getOrDefault<double>("scale", 1.0);
+    if (!(scale != 0) || !std::isfinite(scale))
+        throw InputError(d.locationOf("scale"), "'scale' must be a nonzero number", "scale");
+    const Vec3 rotate = d.getOrDefault<Vec3>("rotate", Vec3::Zero());
+    const Vec3 translate = d.getOrDefault<Vec3>("translate", Vec3::Zero());
+    mesh->transform(scale, rotate.cast<double>(), translate.cast<double>());
+    const std::string path = (dir / file).string();
+    const std::size_t open = mesh->openEdges(), flipped = mesh->inconsistentEdges();
+    if (needClosed && open > 0)
+        throw InputError(d.locationOf("file"), "mesh '" + path + "' is not closed: " + std::to_string(open) +
+                                                   " of its edges are not shared by exactly two triangles (" + why +
+                                                   " needs a closed surface)", "file");
+    if (open == 0 && flipped > 0)
+        throw InputError(d.locationOf("file"), "mesh '" + path + "' is not consistently oriented: " +
+                                                   std::to_string(flipped) + " edges join triangles whose normals "
+                                                   "point to opposite sides", "file");
+    if (open == 0 && !(mesh->signedVolume() > 0)) {
+        std::ostringstream s;
+        s << "mesh '" << path << "' has inverted normals: its enclosed volume is " << mesh->signedVolume()
+          << " (negative: the triangles are ordered clockwise seen from outside; reverse them)";
+        throw InputError(d.locationOf("file"), s.str(), "file");
+    }
+    mesh->prepare();
+    return mesh;
+}
+
 } // namespace
 
 bool SampledWall::occupies(const Vec3& p, int dim, Scalar margin) const {
+    if (mesh) {
+        const TriangleMesh::V q = p.cast<double>();
+        const double d = mesh->distance(q, double(thickness));
+        if (!meshClosed) return d < double(thickness - margin);
+        return mesh->inside(q) != meshOutside && d >= double(margin) && d < double(thickness);
+    }
     const Box inner{min, max};
     if (!container) return inner.contains(p, dim, -margin);
     // the shell: within 'thickness' outside the inner box, not inside it, not beyond an open face
@@ -229,6 +271,63 @@ std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, c
     return depth;
 }
 
+namespace {
+// A `type mesh` wall: `sampling lattice` (default; `layers`, `side inside|outside`) or
+// `sampling poissonDisk` (`spacing` in Δx; one layer on the surface, open or closed).
+void sampleMeshWall(const Dictionary& w, Scalar dx, int dim, SampledWall& sampled) {
+    const bool poisson = w.getWordOrDefault("sampling", {"lattice", "poissonDisk"}, "lattice") == "poissonDisk";
+    const auto mesh = readMesh(w, !poisson, "a wall of `sampling lattice`");
+    sampled.mesh = mesh;
+    sampled.meshClosed = mesh->openEdges() == 0;
+    if (w.found("side") && !sampled.meshClosed)
+        throw InputError(w.locationOf("side"), "'side' needs a closed mesh: '" + mesh->name() +
+                                                   "' is open (its particles lie on its surface)", "side");
+    sampled.meshOutside = w.getWordOrDefault("side", {"inside", "outside"}, "inside") == "outside";
+    const TriangleMesh::V lo = mesh->boundsMin(), hi = mesh->boundsMax();
+    sampled.min = Vec3(Scalar(lo[0]), Scalar(lo[1]), dim == 3 ? Scalar(lo[2]) : Scalar(0));
+    sampled.max = Vec3(Scalar(hi[0]), Scalar(hi[1]), dim == 3 ? Scalar(hi[2]) : Scalar(0));
+    if (dim == 2 && !(lo[2] < 0 && hi[2] > 0))
+        throw InputError(w.locationOf("file"), "mesh '" + mesh->name() + "' does not cross the plane z = 0, "
+                                               "which a 2D case takes its section from", "file");
+    if (poisson) {
+        if (w.found("layers"))
+            throw InputError(w.locationOf("layers"), "'layers' is for `sampling lattice`: a Poisson-disk wall is "
+                                                     "one layer on the surface", "layers");
+        const double spacing = w.getOrDefault<double>("spacing", 1.0);
+        if (!(spacing >= 0.25 && spacing <= 4))
+            throw InputError(w.locationOf("spacing"), "'spacing' (the least distance between wall particles, "
+                                                      "in particleSpacing) must be within 0.25 to 4", "spacing");
+        sampled.thickness = Scalar(spacing) * dx;
+        sampled.positions = poissonDiskSurface(*mesh, spacing * double(dx), dim);
+    } else {
+        if (w.found("spacing"))
+            throw InputError(w.locationOf("spacing"), "'spacing' is for `sampling poissonDisk` (a lattice wall "
+                                                      "takes particleSpacing)", "spacing");
+        const int layers = w.getOrDefault<int>("layers", 3);
+        if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
+        sampled.thickness = layers * dx;
+        sampled.positions = latticeLayers(*mesh, dx, dim, sampled.thickness, sampled.meshOutside);
+    }
+    if (sampled.positions.empty())
+        throw InputError(w.where(), "wall '" + sampled.name + "' produced no particles (is its mesh smaller than "
+                                    "particleSpacing, or in 2D, is its section by z = 0 empty?)");
+}
+
+// A mesh entry's particles, from its surface area and box (an upper bound of the order of the count).
+double meshEstimate(const Dictionary& d, Scalar dx, int dim, bool fluid) {
+    const auto mesh = readMesh(d, false, "");
+    const TriangleMesh::V size = mesh->boundsMax() - mesh->boundsMin();
+    const double h = double(dx);
+    if (fluid) return dim == 3 ? size.prod() / (h * h * h) : size[0] * size[1] / (h * h);
+    const bool poisson = d.getWordOrDefault("sampling", {"lattice", "poissonDisk"}, "lattice") == "poissonDisk";
+    const double layers = poisson ? 1.0 : d.getOrDefault<double>("layers", 3);
+    const double spacing = poisson ? d.getOrDefault<double>("spacing", 1.0) : 1.0;
+    // 2D: the section's length is at most the box's perimeter... times the triangles crossing it
+    const double surface = dim == 3 ? mesh->area() / (h * h) : 2 * (size[0] + size[1]) / h;
+    return surface * layers / std::pow(spacing, dim - 1);
+}
+} // namespace
+
 ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, int dim) {
     // lattice points in a box (in double: a count beyond any integer type must not overflow)
     const auto points = [&](const Vec3& lo, const Vec3& hi) {
@@ -248,6 +347,10 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
     if (const Dictionary* walls = geometry.findDict("walls"))
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
+            if (w.getWordOrDefault("type", {"container", "box", "mesh"}, "box") == "mesh") {
+                add(meshEstimate(w, dx, dim, false), "walls." + name, walls->locationOf(name));
+                continue;
+            }
             const Box box = readBox(w, dim);
             const double layers = w.getOrDefault<double>("layers", 3);
             Vec3 lo = box.min, hi = box.max;
@@ -262,8 +365,10 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
         }
     if (const Dictionary* fluid = geometry.findDict("fluid"))
         for (const auto& name : fluid->keywords()) {
-            const Box box = readBox(fluid->subDict(name), dim);
-            const double n = points(box.min, box.max);
+            const Dictionary& f = fluid->subDict(name);
+            const double n = f.getWordOrDefault("type", {"box", "mesh"}, "box") == "mesh"
+                                 ? meshEstimate(f, dx, dim, true)
+                                 : points(readBox(f, dim).min, readBox(f, dim).max);
             add(n, "fluid." + name, fluid->locationOf(name));
             e.fluid += n;
         }
@@ -277,13 +382,29 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
 
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, const Vec3& gravity) {
     SampledGeometry out;
+    std::vector<std::size_t> meshWalls; // (indices into out.walls: it grows)
     std::vector<Box> solids;
     std::vector<std::pair<std::string, Box>> containers;
 
     if (const Dictionary* walls = geometry.findDict("walls")) {
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
-            const std::string type = w.getWord("type", {"container", "box"});
+            const std::string type = w.getWord("type", {"container", "box", "mesh"});
+            if (type == "mesh") {
+                checkName(*walls, name, "wall");
+                if (name == "fluid")
+                    throw InputError(walls->locationOf(name), "a wall may not be called 'fluid' (the fluid's own "
+                                                              "output is fluid.vtp)", name);
+                SampledWall& sampled = out.walls.emplace_back();
+                sampled.name = name;
+                sampled.where = walls->locationOf(name);
+                sampled.motion = w.findDict("motion");
+                w.markUsed("motion");
+                sampleMeshWall(w, dx, dim, sampled);
+                meshWalls.push_back(&sampled - out.walls.data());
+                w.checkAllKeywordsUsed();
+                continue;
+            }
             const Box box = readBox(w, dim);
             const int layers = w.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
@@ -403,14 +524,49 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     // a fluid particle nearer a solid wall's face than this is removed: no fluid particle starts
     // nearer a wall particle than Δx (a box off the fluid's lattice left one half a spacing away)
     const Scalar solidClearance = Scalar(0.49) * dx;
+    // Mesh walls clip the fluid with a gap of Δx: no fluid particle nearer than Δx to one of their
+    // particles, none inside a closed solid (`side inside`) and none in the shell of a vessel
+    // (`side outside`: outside its surface, within its thickness and Δx of it).
+    PointGrid meshWallPoints(double(dx), dim);
+    for (const std::size_t k : meshWalls)
+        for (const Vec3& p : out.walls[k].positions) meshWallPoints.add(p);
+    const auto clippedByMeshWall = [&](const Vec3& p) {
+        if (meshWallPoints.size() == 0) return false;
+        if (meshWallPoints.anyWithin(p, Scalar(0.999) * dx)) return true;
+        for (const std::size_t k : meshWalls) {
+            const SampledWall& w = out.walls[k];
+            if (!w.meshClosed) continue;
+            const TriangleMesh::V q = p.cast<double>();
+            if (w.meshOutside) {
+                const double reach = double(w.thickness + dx);
+                if (!w.mesh->inside(q) && w.mesh->distance(q, reach) < reach) return true;
+            } else if (w.mesh->inside(q)) {
+                return true;
+            }
+        }
+        return false;
+    };
     OccupiedSpace occupied(dx, dim);
     std::vector<char> hydrostaticParticle;
     Vec3 up = Vec3::Zero();
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
         checkName(fluid, name, "fluid block");
-        f.getWord("type", {"box"});
-        const Box box = readBox(f, dim);
+        const bool isMesh = f.getWord("type", {"box", "mesh"}) == "mesh";
+        std::shared_ptr<TriangleMesh> mesh;
+        Box box;
+        if (isMesh) {
+            mesh = readMesh(f, true, "a fluid region");
+            for (int a = 0; a < 3; ++a) {
+                box.min[a] = a < dim ? Scalar(mesh->boundsMin()[a]) : Scalar(0);
+                box.max[a] = a < dim ? Scalar(mesh->boundsMax()[a]) : Scalar(0);
+            }
+            if (dim == 2 && !(mesh->boundsMin()[2] < 0 && mesh->boundsMax()[2] > 0))
+                throw InputError(f.locationOf("file"), "mesh '" + mesh->name() + "' does not cross the plane z = 0, "
+                                                       "which a 2D case takes its section from", "file");
+        } else {
+            box = readBox(f, dim);
+        }
         if (!containers.empty()) {
             const Scalar tol = Scalar(1e-9) + Scalar(1e-6) * dx;
             bool inside = false;
@@ -444,9 +600,10 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         const std::size_t before = out.fluidPositions.size();
         std::size_t shared = 0;
         occupied.beginRegion(out.fluidPositions, box.min, box.max);
-        forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
+        const auto fill = [&](const Vec3& p) {
             for (const auto& s : solids)
                 if (s.contains(p, dim, solidClearance)) return;
+            if (clippedByMeshWall(p)) return;
             if (occupied.filled(p)) {
                 ++shared;
                 return;
@@ -454,7 +611,11 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             out.fluidPositions.push_back(p);
             out.fluidVelocities.push_back(velocity);
             hydrostaticParticle.push_back(hydrostatic);
-        });
+        };
+        if (isMesh)
+            for (const Vec3& p : latticeInside(*mesh, dx, dim)) fill(p);
+        else
+            forEachLatticePoint(box.min, box.max, dx, dim, fill);
         occupied.endRegion(out.fluidPositions);
         const std::size_t count = out.fluidPositions.size() - before;
         out.fluidBlocks.push_back({name, fluid.locationOf(name), before, count, box.min, box.max});
@@ -468,6 +629,37 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             throw InputError(f.where(), "fluid block '" + name + "' produced no particles (is it smaller than "
                                         "particleSpacing, or inside a wall?)");
         f.checkAllKeywordsUsed();
+    }
+    // A mesh wall far from the fluid is a mesh in other units or misplaced (a tank in millimetres
+    // read as metres): more than ten times the fluid's size away from it.
+    if (!meshWalls.empty() && !out.fluidPositions.empty()) {
+        Vec3 flo = out.fluidPositions[0], fhi = flo;
+        for (const Vec3& p : out.fluidPositions) {
+            flo = flo.cwiseMin(p);
+            fhi = fhi.cwiseMax(p);
+        }
+        const double size = std::max(double((fhi - flo).norm()), 10 * double(dx));
+        for (const std::size_t k : meshWalls) {
+            const SampledWall& w = out.walls[k];
+            double gap2 = 0;
+            for (int a = 0; a < dim; ++a) {
+                const double g = std::max({0.0, double(w.min[a] - fhi[a]), double(flo[a] - w.max[a])});
+                gap2 += g * g;
+            }
+            if (std::sqrt(gap2) > 10 * size) {
+                std::ostringstream m;
+                const auto point = [&](const Vec3& p) {
+                    std::ostringstream t;
+                    for (int a = 0; a < dim; ++a) t << (a ? " " : "") << p[a];
+                    return t.str();
+                };
+                m << "mesh '" << w.mesh->name() << "' of wall '" << w.name << "' lies far outside the domain: its "
+                  << "box (" << point(w.min) << ") to (" << point(w.max) << ") is " << std::sqrt(gap2)
+                  << " m from the fluid's (" << point(flo) << ") to (" << point(fhi)
+                  << "); check its units, 'scale' and 'translate'";
+                throw InputError(geometry.subDict("walls").subDict(w.name).locationOf("file"), m.str(), "file");
+            }
+        }
     }
     // the hydrostatic start: the depth below the fluid's free surface above each particle, over
     // every block (stacked blocks start as one column)

@@ -30,10 +30,13 @@
 #include "NeighbourSearch.hpp"
 #include "Types.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace spindrift {
+
+class TriangleMesh;
 
 struct SampledWall {
     std::string name;
@@ -47,6 +50,10 @@ struct SampledWall {
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();
     Scalar thickness = 0;
     bool open[6] = {false, false, false, false, false, false};
+    // A `type mesh` wall: its surface (placed), and whether it is closed and its solid side is its
+    // outside (`side outside`: a hollow vessel holding the fluid) rather than its inside.
+    std::shared_ptr<const TriangleMesh> mesh;
+    bool meshClosed = false, meshOutside = false;
     // Whether p (shifted back by the wall's displacement d) lies in that space, more than
     // 'margin' inside it.
     bool occupies(const Vec3& p, int dimension, Scalar margin = 0) const;
