@@ -293,10 +293,10 @@ void sampleMeshWall(const Dictionary& w, Scalar dx, int dim, SampledWall& sample
         if (w.found("layers"))
             throw InputError(w.locationOf("layers"), "'layers' is for `sampling lattice`: a Poisson-disk wall is "
                                                      "one layer on the surface", "layers");
-        const double spacing = w.getOrDefault<double>("spacing", 1.0);
+        const double spacing = w.getOrDefault<double>("spacing", 0.5);
         if (!(spacing >= 0.25 && spacing <= 4))
             throw InputError(w.locationOf("spacing"), "'spacing' (the least distance between wall particles, "
-                                                      "in particleSpacing) must be within 0.25 to 4", "spacing");
+                                                      "in particleSpacing) must be within 0.25 to 4 (default 0.5)", "spacing");
         sampled.thickness = Scalar(spacing) * dx;
         sampled.positions = poissonDiskSurface(*mesh, spacing * double(dx), dim);
     } else {
@@ -321,7 +321,7 @@ double meshEstimate(const Dictionary& d, Scalar dx, int dim, bool fluid) {
     if (fluid) return dim == 3 ? size.prod() / (h * h * h) : size[0] * size[1] / (h * h);
     const bool poisson = d.getWordOrDefault("sampling", {"lattice", "poissonDisk"}, "lattice") == "poissonDisk";
     const double layers = poisson ? 1.0 : d.getOrDefault<double>("layers", 3);
-    const double spacing = poisson ? d.getOrDefault<double>("spacing", 1.0) : 1.0;
+    const double spacing = poisson ? d.getOrDefault<double>("spacing", 0.5) : 1.0;
     // 2D: the section's length is at most the box's perimeter... times the triangles crossing it
     const double surface = dim == 3 ? mesh->area() / (h * h) : 2 * (size[0] + size[1]) / h;
     return surface * layers / std::pow(spacing, dim - 1);
