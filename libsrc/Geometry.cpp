@@ -1,8 +1,10 @@
 #include "Geometry.hpp"
 
 #include "Log.hpp"
+#include "MeshShape.hpp"
 #include "SurfaceSampling.hpp"
 #include "TriangleMesh.hpp"
+#include "Shape.hpp"
 
 #include <Eigen/Geometry> // cross, unitOrthogonal
 
@@ -71,9 +73,12 @@ void checkName(const Dictionary& parent, const std::string& name, const char* wh
                          name);
 }
 
-// Makes the box a whole number of spacings along each axis (its max moved to min + round(size/Δx)
-// Δx), with a warning at its entry when it was not: the lattice then fills it face to face.
+// A wall box (or a container's inside) must be a whole number of spacings along each axis for
+// the lattice to fill it face to face. One that is not is refused (its entry, `max`, the nearest
+// valid max values), unless the entry says `snapToLattice yes;`: then its max is moved to
+// min + round(size/Δx) Δx, which the log says.
 void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedName, Scalar dx, int dim) {
+    const bool snap = entry.getOrDefault<bool>("snapToLattice", false);
     for (int a = 0; a < dim; ++a) {
         const Scalar cells = std::round((box.max[a] - box.min[a]) / dx);
         // (the tolerance allows for the rounding of a float build as well)
@@ -82,22 +87,69 @@ void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedN
         if (std::abs(cells * dx - (box.max[a] - box.min[a])) > tolerance) {
             std::ostringstream s;
             s << scopedName << ": size along " << "xyz"[a] << " (" << box.max[a] - box.min[a]
-              << ") is not a multiple of particleSpacing " << dx << "; the wall is placed at max " << "xyz"[a] << " = "
-              << box.min[a] + cells * dx;
-            log::warning(locatedMessage(entry.locationOf("max"), "", s.str()));
+              << ") is not a multiple of particleSpacing " << dx;
+            if (!snap) {
+                const Scalar below = std::floor((box.max[a] - box.min[a]) / dx);
+                s << "; the nearest valid max " << "xyz"[a] << " are " << box.min[a] + std::max(Scalar(1), below) * dx
+                  << " and " << box.min[a] + (std::max(Scalar(1), below) + 1) * dx
+                  << " (or add 'snapToLattice yes;' to the entry to place it at " << box.min[a] + std::max(Scalar(1), cells) * dx
+                  << ")";
+                throw InputError(entry.locationOf("max"), s.str(), "max");
+            }
+            s << "; the wall is placed at max " << "xyz"[a] << " = " << box.min[a] + cells * dx << " (snapToLattice)";
+            log::info(locatedMessage(entry.locationOf("max"), "", s.str()));
             box.max[a] = box.min[a] + cells * dx;
         }
     }
 }
 
-// The lattice points of a solid box that lie within 'thickness' of its surface (its outermost
-// layers), appended to 'out'.
-void solidBoxLayers(const Box& box, Scalar thickness, Scalar dx, int dim, std::vector<Vec3>& out) {
-    forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) {
-        Scalar depth = std::numeric_limits<Scalar>::max();
-        for (int a = 0; a < dim; ++a) depth = std::min({depth, p[a] - box.min[a], box.max[a] - p[a]});
-        if (depth < thickness) out.push_back(p);
-    });
+const std::vector<std::string>& wallTypes() {
+    static const std::vector<std::string> types = [] {
+        std::vector<std::string> t{"container"};
+        t.insert(t.end(), shapeTypes().begin(), shapeTypes().end());
+        return t;
+    }();
+    return types;
+}
+
+// A uniform solid's volume, centroid and inertia per unit density: a box's exactly (as ever),
+// any other shape's from its lattice points inside it, each Δx^dim of it (a point mass each; the
+// lattice's own error, O(Δx/size), is that of its particles).
+BodyMassProperties massProperties(const Shape& shape, Scalar dx) {
+    BodyMassProperties m;
+    const int dim = shape.dimension();
+    Vec3 lo, hi;
+    shape.bounds(lo, hi);
+    if (shape.isBox()) {
+        const Eigen::Vector3d size = (hi - lo).cast<double>();
+        m.volume = dim == 2 ? size[0] * size[1] : size[0] * size[1] * size[2];
+        m.centroid = 0.5 * (lo + hi).cast<double>();
+        if (dim == 2) m.centroid[2] = 0;
+        // the uniform box about its centre: I_xx = V (b² + c²)/12, ... (2D: the in-plane Izz)
+        m.inertia = Eigen::Matrix3d::Zero();
+        m.inertia(0, 0) = m.volume * (size[1] * size[1] + size[2] * size[2]) / 12;
+        m.inertia(1, 1) = m.volume * (size[0] * size[0] + size[2] * size[2]) / 12;
+        m.inertia(2, 2) = m.volume * (size[0] * size[0] + size[1] * size[1]) / 12;
+        return m;
+    }
+    std::vector<Vec3> points;
+    sampleShape(shape, dx, 0, points);
+    const double cell = dim == 2 ? double(dx) * double(dx) : double(dx) * double(dx) * double(dx);
+    m.volume = double(points.size()) * cell;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (const Vec3& p : points) c += p.cast<double>();
+    if (!points.empty()) c /= double(points.size());
+    m.centroid = c;
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (const Vec3& p : points) {
+        const Eigen::Vector3d r = p.cast<double>() - c;
+        I += cell * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    if (dim == 2) { // a lamina per unit depth: only Izz = ∫ (x² + y²) matters
+        I(0, 1) = I(1, 0) = I(0, 2) = I(2, 0) = I(1, 2) = I(2, 1) = 0;
+    }
+    m.inertia = I;
+    return m;
 }
 
 int faceIndex(const std::string& face) {
@@ -105,39 +157,6 @@ int faceIndex(const std::string& face) {
     for (int i = 0; i < 6; ++i)
         if (face == names[i]) return i;
     return -1;
-}
-
-// A `type mesh` entry's surface: constant/triSurface/<file> (next to constant/geometry) read,
-// placed (scale, then rotate (α β γ) degrees about x, y, z, then translate) and checked. A closed
-// surface ('closed' needed, or found) must be consistently oriented with its normals outwards.
-std::shared_ptr<TriangleMesh> readMesh(const Dictionary& d, bool needClosed, const char* why) {
-    const std::string file = d.get<std::string>("file");
-    const std::filesystem::path dir = std::filesystem::path(d.where().file).parent_path() / "triSurface";
-    auto mesh = std::make_shared<TriangleMesh>(TriangleMesh::read(dir / file, d.locationOf("file")));
-    const double scale = d.getOrDefault<double>("scale", 1.0);
-    if (!(scale != 0) || !std::isfinite(scale))
-        throw InputError(d.locationOf("scale"), "'scale' must be a nonzero number", "scale");
-    const Vec3 rotate = d.getOrDefault<Vec3>("rotate", Vec3::Zero());
-    const Vec3 translate = d.getOrDefault<Vec3>("translate", Vec3::Zero());
-    mesh->transform(scale, rotate.cast<double>(), translate.cast<double>());
-    const std::string path = (dir / file).string();
-    const std::size_t open = mesh->openEdges(), flipped = mesh->inconsistentEdges();
-    if (needClosed && open > 0)
-        throw InputError(d.locationOf("file"), "mesh '" + path + "' is not closed: " + std::to_string(open) +
-                                                   " of its edges are not shared by exactly two triangles (" + why +
-                                                   " needs a closed surface)", "file");
-    if (open == 0 && flipped > 0)
-        throw InputError(d.locationOf("file"), "mesh '" + path + "' is not consistently oriented: " +
-                                                   std::to_string(flipped) + " edges join triangles whose normals "
-                                                   "point to opposite sides", "file");
-    if (open == 0 && !(mesh->signedVolume() > 0)) {
-        std::ostringstream s;
-        s << "mesh '" << path << "' has inverted normals: its enclosed volume is " << mesh->signedVolume()
-          << " (negative: the triangles are ordered clockwise seen from outside; reverse them)";
-        throw InputError(d.locationOf("file"), s.str(), "file");
-    }
-    mesh->prepare();
-    return mesh;
 }
 
 } // namespace
@@ -149,8 +168,10 @@ bool SampledWall::occupies(const Vec3& p, int dim, Scalar margin) const {
         if (!meshClosed) return d < double(thickness - margin);
         return mesh->inside(q) != meshOutside && d >= double(margin) && d < double(thickness);
     }
-    const Box inner{min, max};
-    if (!container) return inner.contains(p, dim, -margin);
+    if (!container) {
+        if (shape) return shape->contains(p, -margin);
+        return Box{min, max}.contains(p, dim, -margin);
+    }
     // the shell: within 'thickness' outside the inner box, not inside it, not beyond an open face
     if (!Box{min - Vec3::Constant(thickness), max + Vec3::Constant(thickness)}.contains(p, dim, -margin)) return false;
     bool inShell = false;
@@ -347,8 +368,13 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
     if (const Dictionary* walls = geometry.findDict("walls"))
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
-            if (w.getWordOrDefault("type", {"container", "box", "mesh"}, "box") == "mesh") {
+            const std::string type = w.getWord("type", wallTypes());
+            if (type == "mesh") { // (its own sampling: sampleMeshWall)
                 add(meshEstimate(w, dx, dim, false), "walls." + name, walls->locationOf(name));
+                continue;
+            }
+            if (type != "container") {
+                add(latticePointCount(*readShape(w, dim, dx), dx), "walls." + name, walls->locationOf(name));
                 continue;
             }
             const Box box = readBox(w, dim);
@@ -358,24 +384,18 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
                 lo[a] -= Scalar(layers * dx);
                 hi[a] += Scalar(layers * dx);
             }
-            add(w.getWordOrDefault("type", {"container", "box"}, "box") == "container"
-                    ? std::max(0.0, points(lo, hi) - points(box.min, box.max))
-                    : points(box.min, box.max),
-                "walls." + name, walls->locationOf(name));
+            add(std::max(0.0, points(lo, hi) - points(box.min, box.max)), "walls." + name, walls->locationOf(name));
         }
     if (const Dictionary* fluid = geometry.findDict("fluid"))
         for (const auto& name : fluid->keywords()) {
-            const Dictionary& f = fluid->subDict(name);
-            const double n = f.getWordOrDefault("type", {"box", "mesh"}, "box") == "mesh"
-                                 ? meshEstimate(f, dx, dim, true)
-                                 : points(readBox(f, dim).min, readBox(f, dim).max);
+            const double n = latticePointCount(*readShape(fluid->subDict(name), dim, dx), dx);
             add(n, "fluid." + name, fluid->locationOf(name));
             e.fluid += n;
         }
     if (const Dictionary* bodies = geometry.findDict("bodies"))
         for (const auto& name : bodies->keywords()) {
-            const Box box = readBox(bodies->subDict(name), dim);
-            add(points(box.min, box.max), "bodies." + name, bodies->locationOf(name));
+            add(latticePointCount(*readShape(bodies->subDict(name), dim, dx), dx), "bodies." + name,
+                bodies->locationOf(name));
         }
     return e;
 }
@@ -383,13 +403,13 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, const Vec3& gravity) {
     SampledGeometry out;
     std::vector<std::size_t> meshWalls; // (indices into out.walls: it grows)
-    std::vector<Box> solids;
+    std::vector<std::shared_ptr<const Shape>> solids;
     std::vector<std::pair<std::string, Box>> containers;
 
     if (const Dictionary* walls = geometry.findDict("walls")) {
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
-            const std::string type = w.getWord("type", {"container", "box", "mesh"});
+            const std::string type = w.getWord("type", wallTypes());
             if (type == "mesh") {
                 checkName(*walls, name, "wall");
                 if (name == "fluid")
@@ -405,7 +425,6 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 w.checkAllKeywordsUsed();
                 continue;
             }
-            const Box box = readBox(w, dim);
             const int layers = w.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
             const Scalar L = layers * dx;
@@ -422,6 +441,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             w.markUsed("motion");
             std::vector<Vec3>& wallPositions = sampled.positions;
             if (type == "container") {
+                const Box box = readBox(w, dim);
                 containers.emplace_back(name, box);
                 bool open[6] = {false, false, false, false, false, false};
                 for (const auto& face : w.getOrDefault<std::vector<std::string>>("open", {})) {
@@ -457,13 +477,18 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                     }
                     if (outside) wallPositions.push_back(p);
                 });
-            } else { // solid box: outermost layers inside the surface
-                Box solid = box;
-                snapToLattice(solid, w, "walls." + name, dx, dim);
-                solids.push_back(solid);
-                sampled.min = solid.min;
-                sampled.max = solid.max;
-                solidBoxLayers(solid, L, dx, dim, wallPositions);
+            } else { // a solid: the `layers` outermost lattice layers inside its surface
+                std::unique_ptr<Shape> shape = readShape(w, dim, dx);
+                if (shape->isBox()) { // a box is a whole number of spacings (or snapped to one)
+                    Box solid;
+                    shape->bounds(solid.min, solid.max);
+                    snapToLattice(solid, w, "walls." + name, dx, dim);
+                    shape = makeBox(solid.min, solid.max, dim);
+                }
+                sampled.shape = std::move(shape);
+                solids.push_back(sampled.shape);
+                sampled.shape->bounds(sampled.min, sampled.max);
+                sampleShape(*sampled.shape, dx, L, wallPositions);
             }
             if (wallPositions.empty())
                 throw InputError(w.where(), "wall '" + name + "' produced no particles (is it smaller than particleSpacing?)");
@@ -476,21 +501,21 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     if (const Dictionary* bodies = geometry.findDict("bodies")) {
         for (const auto& name : bodies->keywords()) {
             const Dictionary& b = bodies->subDict(name);
-            b.getWord("type", {"box"});
-            const Box box = readBox(b, dim);
+            std::shared_ptr<const Shape> shape = readShape(b, dim, dx);
             const int layers = b.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(b.locationOf("layers"), "'layers' must be at least 1", "layers");
             if (name == "fluid" || (geometry.findDict("walls") && geometry.subDict("walls").found(name)))
                 throw InputError(bodies->locationOf(name), "a body may not share its name with the fluid or a wall", name);
             checkName(*bodies, name, "body");
-            solids.push_back(box);
+            solids.push_back(shape);
             SampledWall& sampled = out.walls.emplace_back();
             sampled.name = name;
             sampled.where = bodies->locationOf(name);
-            sampled.min = box.min;
-            sampled.max = box.max;
+            shape->bounds(sampled.min, sampled.max);
+            sampled.shape = shape;
             sampled.body = &b;
-            solidBoxLayers(box, layers * dx, dx, dim, sampled.positions);
+            sampled.mass = massProperties(*shape, dx);
+            sampleShape(*shape, dx, layers * dx, sampled.positions);
             if (sampled.positions.empty())
                 throw InputError(b.where(), "body '" + name + "' produced no particles (is it smaller than particleSpacing?)");
         }
@@ -552,21 +577,9 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
         checkName(fluid, name, "fluid block");
-        const bool isMesh = f.getWord("type", {"box", "mesh"}) == "mesh";
-        std::shared_ptr<TriangleMesh> mesh;
+        const std::unique_ptr<Shape> shape = readShape(f, dim, dx);
         Box box;
-        if (isMesh) {
-            mesh = readMesh(f, true, "a fluid region");
-            for (int a = 0; a < 3; ++a) {
-                box.min[a] = a < dim ? Scalar(mesh->boundsMin()[a]) : Scalar(0);
-                box.max[a] = a < dim ? Scalar(mesh->boundsMax()[a]) : Scalar(0);
-            }
-            if (dim == 2 && !(mesh->boundsMin()[2] < 0 && mesh->boundsMax()[2] > 0))
-                throw InputError(f.locationOf("file"), "mesh '" + mesh->name() + "' does not cross the plane z = 0, "
-                                                       "which a 2D case takes its section from", "file");
-        } else {
-            box = readBox(f, dim);
-        }
+        shape->bounds(box.min, box.max);
         if (!containers.empty()) {
             const Scalar tol = Scalar(1e-9) + Scalar(1e-6) * dx;
             bool inside = false;
@@ -600,22 +613,21 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         const std::size_t before = out.fluidPositions.size();
         std::size_t shared = 0;
         occupied.beginRegion(out.fluidPositions, box.min, box.max);
-        const auto fill = [&](const Vec3& p) {
-            for (const auto& s : solids)
-                if (s.contains(p, dim, solidClearance)) return;
-            if (clippedByMeshWall(p)) return;
+        std::vector<Vec3> candidates;
+        sampleShape(*shape, dx, 0, candidates);
+        for (const Vec3& p : candidates) {
+            bool inSolid = false;
+            for (const auto& s : solids) inSolid = inSolid || s->contains(p, solidClearance);
+            if (inSolid) continue;
+            if (clippedByMeshWall(p)) continue;
             if (occupied.filled(p)) {
                 ++shared;
-                return;
+                continue;
             }
             out.fluidPositions.push_back(p);
             out.fluidVelocities.push_back(velocity);
             hydrostaticParticle.push_back(hydrostatic);
-        };
-        if (isMesh)
-            for (const Vec3& p : latticeInside(*mesh, dx, dim)) fill(p);
-        else
-            forEachLatticePoint(box.min, box.max, dx, dim, fill);
+        }
         occupied.endRegion(out.fluidPositions);
         const std::size_t count = out.fluidPositions.size() - before;
         out.fluidBlocks.push_back({name, fluid.locationOf(name), before, count, box.min, box.max});
@@ -669,10 +681,8 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         // its lattice for the columns, exact for a body of the water's density)
         std::vector<Vec3> columns = out.fluidPositions;
         if (const Dictionary* bodies = geometry.findDict("bodies"))
-            for (const auto& name : bodies->keywords()) {
-                const Box box = readBox(bodies->subDict(name), dim);
-                forEachLatticePoint(box.min, box.max, dx, dim, [&](const Vec3& p) { columns.push_back(p); });
-            }
+            for (const auto& name : bodies->keywords())
+                sampleShape(*readShape(bodies->subDict(name), dim, dx), dx, 0, columns);
         std::vector<Scalar> depths = depthsBelowFreeSurface(columns, up, dx, dim);
         depths.resize(out.fluidPositions.size());
         for (std::size_t i = 0; i < depths.size(); ++i)

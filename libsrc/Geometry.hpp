@@ -28,6 +28,7 @@
 
 #include "Dictionary.hpp"
 #include "NeighbourSearch.hpp"
+#include "Shape.hpp"
 #include "Types.hpp"
 
 #include <memory>
@@ -37,6 +38,12 @@
 namespace spindrift {
 
 class TriangleMesh;
+// A uniform solid body's volume (2D: area), centroid and inertia about it per unit density.
+struct BodyMassProperties {
+    double volume = 0;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
 
 struct SampledWall {
     std::string name;
@@ -44,7 +51,10 @@ struct SampledWall {
     std::vector<Vec3> positions;
     const Dictionary* motion = nullptr; // the entry's `motion { }`, read by the caller (Motion::read)
     const Dictionary* body = nullptr;   // a `bodies` entry: the whole entry (rigidBodyFrom reads it)
-    // The space it occupies as sampled: a solid box [min, max], or a container's shell, 'thickness'
+    // A solid wall's or body's shape (none for a container); [min, max] its bounds.
+    std::shared_ptr<const Shape> shape;
+    BodyMassProperties mass; // a body's, of its shape
+    // The space it occupies as sampled: a solid shape, or a container's shell, 'thickness'
     // (its layers) outside [min, max] less the slabs beyond its open faces (xMin xMax yMin ...).
     bool container = false;
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();

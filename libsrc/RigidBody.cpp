@@ -31,6 +31,15 @@ RigidBody RigidBody::read(const Dictionary& d, const Vec3& boxMin, const Vec3& b
     const V3 lo = boxMin.cast<double>(), hi = boxMax.cast<double>();
     const V3 size = hi - lo;
     const double volume = dim == 2 ? size[0] * size[1] : size[0] * size[1] * size[2];
+    // the uniform box about its centre: I_xx = V (b² + c²)/12, ... (2D: the in-plane Izz)
+    M3 unit = M3::Zero();
+    unit(0, 0) = volume * (size[1] * size[1] + size[2] * size[2]) / 12;
+    unit(1, 1) = volume * (size[0] * size[0] + size[2] * size[2]) / 12;
+    unit(2, 2) = volume * (size[0] * size[0] + size[1] * size[1]) / 12;
+    return read(d, volume, 0.5 * (lo + hi), unit, dim);
+}
+
+RigidBody RigidBody::read(const Dictionary& d, double volume, const V3& centroid, const M3& unitInertia, int dim) {
     const auto positive = [&](const char* key, double value) {
         if (!(value > 0) || !std::isfinite(value))
             throw InputError(d.locationOf(key), std::string(key) + " must be a positive number", key);
@@ -44,15 +53,13 @@ RigidBody RigidBody::read(const Dictionary& d, const Vec3& boxMin, const Vec3& b
     };
     if (d.found("density") == d.found("mass"))
         throw InputError(d.found("mass") ? d.locationOf("mass") : d.where(),
-                         "a body needs either 'density' (of the uniform box) or 'mass'", "density");
+                         "a body needs either 'density' (of the uniform solid) or 'mass'", "density");
     double mass = 0;
     M3 inertia = M3::Zero();
     if (d.found("density")) {
-        mass = positive("density", d.get<double>("density")) * volume;
-        // the uniform box about its centre: I_xx = m (b² + c²)/12, ... (2D: the in-plane Izz)
-        inertia(0, 0) = mass * (size[1] * size[1] + size[2] * size[2]) / 12;
-        inertia(1, 1) = mass * (size[0] * size[0] + size[2] * size[2]) / 12;
-        inertia(2, 2) = mass * (size[0] * size[0] + size[1] * size[1]) / 12;
+        const double density = positive("density", d.get<double>("density"));
+        mass = density * volume;
+        inertia = density * unitInertia;
     } else {
         mass = positive("mass", d.get<double>("mass"));
         if (!d.found("inertia"))
@@ -69,7 +76,7 @@ RigidBody RigidBody::read(const Dictionary& d, const Vec3& boxMin, const Vec3& b
                              "inertia");
     }
     State start;
-    start.position = vector3("centreOfMass", 0.5 * (lo + hi));
+    start.position = vector3("centreOfMass", centroid);
     if (dim == 2) start.position[2] = 0;
     start.velocity = vector3("velocity", V3::Zero());
     const V3 w = vector3("angularVelocity", V3::Zero());

@@ -53,6 +53,10 @@ public:
     //   translation (1 1 1); rotation (1 1 1);       // free degrees of freedom (0: fixed)
     // Errors name the entry's keyword.
     static RigidBody read(const Dictionary& entry, const Vec3& boxMin, const Vec3& boxMax, int dimension);
+    // The same for a body of any shape: 'volume' (2D: area), 'centroid' and 'unitInertia' (about
+    // the centroid, per unit density) of the uniform solid; `density` scales them.
+    static RigidBody read(const Dictionary& entry, double volume, const V3& centroid, const M3& unitInertia,
+                          int dimension);
 
     // Translation and rotation locked along world axes (true: fixed).
     void setConstraints(const std::array<bool, 3>& fixedTranslation, const std::array<bool, 3>& fixedRotation);

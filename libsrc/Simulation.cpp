@@ -393,7 +393,8 @@ void Simulation::buildParticles() {
         }
         if (sampled.body) {
             w.body = std::make_unique<RigidBody>(
-                RigidBody::read(*sampled.body, sampled.min, sampled.max, physics.dimension));
+                RigidBody::read(*sampled.body, sampled.mass.volume, sampled.mass.centroid, sampled.mass.inertia,
+                                physics.dimension));
             sampled.body->checkAllKeywordsUsed();
             // where it may go: anywhere in the sampled domain (a body moves with the fluid)
             std::ostringstream m;
