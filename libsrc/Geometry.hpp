@@ -23,7 +23,11 @@
 // the first gap of more than half a spacing. Each wall entry is a wall system of its own, named
 // after the entry; names of walls and blocks are words of letters, digits, '_', '-' and '.'
 // starting with a letter or '_' (a wall's name is a file name, <name>.vtp, and a ParaView block
-// name in the .pvd). Room for cylinders, spheres and STL later: each shape is one `type`.
+// name in the .pvd).
+//   walls { <name> { type mesh; file "tank.obj"; sampling lattice|poissonDisk; layers 3; spacing 0.5;
+//                    side inside|outside; scale 1; rotate (0 0 0); translate (0 0 0); } }
+//           a mesh from constant/triSurface/ (MeshShape.hpp, SurfaceSampling.hpp); fluid regions and
+//           bodies of `type mesh` are Shapes (Shape.hpp).
 #pragma once
 
 #include "Dictionary.hpp"
