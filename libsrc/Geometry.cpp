@@ -2,12 +2,16 @@
 
 #include "Expression.hpp"
 #include "Log.hpp"
+#include "MeshShape.hpp"
+#include "SurfaceSampling.hpp"
+#include "TriangleMesh.hpp"
 #include "Shape.hpp"
 
 #include <Eigen/Geometry> // cross, unitOrthogonal
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -204,6 +208,12 @@ int faceIndex(const std::string& face) {
 } // namespace
 
 bool SampledWall::occupies(const Vec3& p, int dim, Scalar margin) const {
+    if (mesh) {
+        const TriangleMesh::V q = p.cast<double>();
+        const double d = mesh->distance(q, double(thickness));
+        if (!meshClosed) return d < double(thickness - margin);
+        return mesh->inside(q) != meshOutside && d >= double(margin) && d < double(thickness);
+    }
     if (!container) {
         if (shape) return shape->contains(p, -margin);
         return Box{min, max}.contains(p, dim, -margin);
@@ -346,6 +356,63 @@ std::vector<Scalar> depthsBelowFreeSurface(const std::vector<Vec3>& positions, c
     return depth;
 }
 
+namespace {
+// A `type mesh` wall: `sampling lattice` (default; `layers`, `side inside|outside`) or
+// `sampling poissonDisk` (`spacing` in Δx; one layer on the surface, open or closed).
+void sampleMeshWall(const Dictionary& w, Scalar dx, int dim, SampledWall& sampled) {
+    const bool poisson = w.getWordOrDefault("sampling", {"lattice", "poissonDisk"}, "lattice") == "poissonDisk";
+    const auto mesh = readMesh(w, !poisson, "a wall of `sampling lattice`");
+    sampled.mesh = mesh;
+    sampled.meshClosed = mesh->openEdges() == 0;
+    if (w.found("side") && !sampled.meshClosed)
+        throw InputError(w.locationOf("side"), "'side' needs a closed mesh: '" + mesh->name() +
+                                                   "' is open (its particles lie on its surface)", "side");
+    sampled.meshOutside = w.getWordOrDefault("side", {"inside", "outside"}, "inside") == "outside";
+    const TriangleMesh::V lo = mesh->boundsMin(), hi = mesh->boundsMax();
+    sampled.min = Vec3(Scalar(lo[0]), Scalar(lo[1]), dim == 3 ? Scalar(lo[2]) : Scalar(0));
+    sampled.max = Vec3(Scalar(hi[0]), Scalar(hi[1]), dim == 3 ? Scalar(hi[2]) : Scalar(0));
+    if (dim == 2 && !(lo[2] < 0 && hi[2] > 0))
+        throw InputError(w.locationOf("file"), "mesh '" + mesh->name() + "' does not cross the plane z = 0, "
+                                               "which a 2D case takes its section from", "file");
+    if (poisson) {
+        if (w.found("layers"))
+            throw InputError(w.locationOf("layers"), "'layers' is for `sampling lattice`: a Poisson-disk wall is "
+                                                     "one layer on the surface", "layers");
+        const double spacing = w.getOrDefault<double>("spacing", 0.5);
+        if (!(spacing >= 0.25 && spacing <= 4))
+            throw InputError(w.locationOf("spacing"), "'spacing' (the least distance between wall particles, "
+                                                      "in particleSpacing) must be within 0.25 to 4 (default 0.5)", "spacing");
+        sampled.thickness = Scalar(spacing) * dx;
+        sampled.positions = poissonDiskSurface(*mesh, spacing * double(dx), dim);
+    } else {
+        if (w.found("spacing"))
+            throw InputError(w.locationOf("spacing"), "'spacing' is for `sampling poissonDisk` (a lattice wall "
+                                                      "takes particleSpacing)", "spacing");
+        const int layers = w.getOrDefault<int>("layers", 3);
+        if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
+        sampled.thickness = layers * dx;
+        sampled.positions = latticeLayers(*mesh, dx, dim, sampled.thickness, sampled.meshOutside);
+    }
+    if (sampled.positions.empty())
+        throw InputError(w.where(), "wall '" + sampled.name + "' produced no particles (is its mesh smaller than "
+                                    "particleSpacing, or in 2D, is its section by z = 0 empty?)");
+}
+
+// A mesh entry's particles, from its surface area and box (an upper bound of the order of the count).
+double meshEstimate(const Dictionary& d, Scalar dx, int dim, bool fluid) {
+    const auto mesh = readMesh(d, false, "");
+    const TriangleMesh::V size = mesh->boundsMax() - mesh->boundsMin();
+    const double h = double(dx);
+    if (fluid) return dim == 3 ? size.prod() / (h * h * h) : size[0] * size[1] / (h * h);
+    const bool poisson = d.getWordOrDefault("sampling", {"lattice", "poissonDisk"}, "lattice") == "poissonDisk";
+    const double layers = poisson ? 1.0 : d.getOrDefault<double>("layers", 3);
+    const double spacing = poisson ? d.getOrDefault<double>("spacing", 0.5) : 1.0;
+    // 2D: the section's length is at most the box's perimeter... times the triangles crossing it
+    const double surface = dim == 3 ? mesh->area() / (h * h) : 2 * (size[0] + size[1]) / h;
+    return surface * layers / std::pow(spacing, dim - 1);
+}
+} // namespace
+
 ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, int dim) {
     // lattice points in a box (in double: a count beyond any integer type must not overflow)
     const auto points = [&](const Vec3& lo, const Vec3& hi) {
@@ -365,7 +432,12 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
     if (const Dictionary* walls = geometry.findDict("walls"))
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
-            if (w.getWord("type", wallTypes()) != "container") {
+            const std::string type = w.getWord("type", wallTypes());
+            if (type == "mesh") { // (its own sampling: sampleMeshWall)
+                add(meshEstimate(w, dx, dim, false), "walls." + name, walls->locationOf(name));
+                continue;
+            }
+            if (type != "container") {
                 add(latticePointCount(*readShape(w, dim, dx), dx), "walls." + name, walls->locationOf(name));
                 continue;
             }
@@ -394,6 +466,7 @@ ParticleEstimate estimateParticleCount(const Dictionary& geometry, Scalar dx, in
 
 SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, const Vec3& gravity) {
     SampledGeometry out;
+    std::vector<std::size_t> meshWalls; // (indices into out.walls: it grows)
     std::vector<std::shared_ptr<const Shape>> solids;
     std::vector<std::pair<std::string, Box>> containers;
 
@@ -401,6 +474,21 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
             const std::string type = w.getWord("type", wallTypes());
+            if (type == "mesh") {
+                checkName(*walls, name, "wall");
+                if (name == "fluid")
+                    throw InputError(walls->locationOf(name), "a wall may not be called 'fluid' (the fluid's own "
+                                                              "output is fluid.vtp)", name);
+                SampledWall& sampled = out.walls.emplace_back();
+                sampled.name = name;
+                sampled.where = walls->locationOf(name);
+                sampled.motion = w.findDict("motion");
+                w.markUsed("motion");
+                sampleMeshWall(w, dx, dim, sampled);
+                meshWalls.push_back(&sampled - out.walls.data());
+                w.checkAllKeywordsUsed();
+                continue;
+            }
             const int layers = w.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
             const Scalar L = layers * dx;
@@ -525,6 +613,28 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     // a fluid particle nearer a solid wall's face than this is removed: no fluid particle starts
     // nearer a wall particle than Δx (a box off the fluid's lattice left one half a spacing away)
     const Scalar solidClearance = Scalar(0.49) * dx;
+    // Mesh walls clip the fluid with a gap of Δx: no fluid particle nearer than Δx to one of their
+    // particles, none inside a closed solid (`side inside`) and none in the shell of a vessel
+    // (`side outside`: outside its surface, within its thickness and Δx of it).
+    PointGrid meshWallPoints(double(dx), dim);
+    for (const std::size_t k : meshWalls)
+        for (const Vec3& p : out.walls[k].positions) meshWallPoints.add(p);
+    const auto clippedByMeshWall = [&](const Vec3& p) {
+        if (meshWallPoints.size() == 0) return false;
+        if (meshWallPoints.anyWithin(p, Scalar(0.999) * dx)) return true;
+        for (const std::size_t k : meshWalls) {
+            const SampledWall& w = out.walls[k];
+            if (!w.meshClosed) continue;
+            const TriangleMesh::V q = p.cast<double>();
+            if (w.meshOutside) {
+                const double reach = double(w.thickness + dx);
+                if (!w.mesh->inside(q) && w.mesh->distance(q, reach) < reach) return true;
+            } else if (w.mesh->inside(q)) {
+                return true;
+            }
+        }
+        return false;
+    };
     OccupiedSpace occupied(dx, dim);
     std::vector<char> hydrostaticParticle;
     Vec3 up = Vec3::Zero();
@@ -581,6 +691,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             bool inSolid = false;
             for (const auto& s : solids) inSolid = inSolid || s->contains(p, solidClearance);
             if (inSolid) continue;
+            if (clippedByMeshWall(p)) continue;
             if (occupied.filled(p)) {
                 ++shared;
                 continue;
@@ -603,6 +714,37 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             throw InputError(f.where(), "fluid block '" + name + "' produced no particles (is it smaller than "
                                         "particleSpacing, or inside a wall?)");
         f.checkAllKeywordsUsed();
+    }
+    // A mesh wall far from the fluid is a mesh in other units or misplaced (a tank in millimetres
+    // read as metres): more than ten times the fluid's size away from it.
+    if (!meshWalls.empty() && !out.fluidPositions.empty()) {
+        Vec3 flo = out.fluidPositions[0], fhi = flo;
+        for (const Vec3& p : out.fluidPositions) {
+            flo = flo.cwiseMin(p);
+            fhi = fhi.cwiseMax(p);
+        }
+        const double size = std::max(double((fhi - flo).norm()), 10 * double(dx));
+        for (const std::size_t k : meshWalls) {
+            const SampledWall& w = out.walls[k];
+            double gap2 = 0;
+            for (int a = 0; a < dim; ++a) {
+                const double g = std::max({0.0, double(w.min[a] - fhi[a]), double(flo[a] - w.max[a])});
+                gap2 += g * g;
+            }
+            if (std::sqrt(gap2) > 10 * size) {
+                std::ostringstream m;
+                const auto point = [&](const Vec3& p) {
+                    std::ostringstream t;
+                    for (int a = 0; a < dim; ++a) t << (a ? " " : "") << p[a];
+                    return t.str();
+                };
+                m << "mesh '" << w.mesh->name() << "' of wall '" << w.name << "' lies far outside the domain: its "
+                  << "box (" << point(w.min) << ") to (" << point(w.max) << ") is " << std::sqrt(gap2)
+                  << " m from the fluid's (" << point(flo) << ") to (" << point(fhi)
+                  << "); check its units, 'scale' and 'translate'";
+                throw InputError(geometry.subDict("walls").subDict(w.name).locationOf("file"), m.str(), "file");
+            }
+        }
     }
     // the hydrostatic start: the depth below the fluid's free surface above each particle, over
     // every block (stacked blocks start as one column)

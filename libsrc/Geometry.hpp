@@ -29,6 +29,10 @@
 // entry is a wall system of its own, named after the entry; names of walls and blocks are words
 // of letters, digits, '_', '-' and '.' starting with a letter or '_' (a wall's name is a file
 // name, <name>.vtp, and a ParaView block name in the .pvd).
+//   walls { <name> { type mesh; file "tank.obj"; sampling lattice|poissonDisk; layers 3; spacing 0.5;
+//                    side inside|outside; scale 1; rotate (0 0 0); translate (0 0 0); } }
+//           a mesh from constant/triSurface/ (MeshShape.hpp, SurfaceSampling.hpp); fluid regions and
+//           bodies of `type mesh` are Shapes (Shape.hpp).
 #pragma once
 
 #include "Dictionary.hpp"
@@ -42,6 +46,7 @@
 
 namespace spindrift {
 
+class TriangleMesh;
 // A uniform solid body's volume (2D: area), centroid and inertia about it per unit density.
 struct BodyMassProperties {
     double volume = 0;
@@ -64,6 +69,10 @@ struct SampledWall {
     Vec3 min = Vec3::Zero(), max = Vec3::Zero();
     Scalar thickness = 0;
     bool open[6] = {false, false, false, false, false, false};
+    // A `type mesh` wall: its surface (placed), and whether it is closed and its solid side is its
+    // outside (`side outside`: a hollow vessel holding the fluid) rather than its inside.
+    std::shared_ptr<const TriangleMesh> mesh;
+    bool meshClosed = false, meshOutside = false;
     // Whether p (shifted back by the wall's displacement d) lies in that space, more than
     // 'margin' inside it.
     bool occupies(const Vec3& p, int dimension, Scalar margin = 0) const;

@@ -1,6 +1,7 @@
 #include "Shape.hpp"
 
 #include "Error.hpp"
+#include "MeshShape.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -288,12 +289,11 @@ void Shape::lattice(Scalar dx, Vec3& origin, long cells[3]) const {
 std::unique_ptr<Shape> makeBox(const Vec3& lo, const Vec3& hi, int dim) { return std::make_unique<BoxShape>(lo, hi, dim); }
 
 const std::vector<std::string>& shapeTypes() {
-    static const std::vector<std::string> types{"box", "cylinder", "sphere", "polygon"};
+    static const std::vector<std::string> types{"box", "cylinder", "sphere", "polygon", "mesh"};
     return types;
 }
 
 std::unique_ptr<Shape> readShape(const Dictionary& d, int dim, Scalar dx, const std::vector<std::string>& allowed) {
-    (void)dx; // (a mesh's sampling will need it)
     const std::string type = d.getWord("type", allowed.empty() ? shapeTypes() : allowed);
     std::unique_ptr<Shape> shape;
     if (type == "box") {
@@ -323,6 +323,8 @@ std::unique_ptr<Shape> readShape(const Dictionary& d, int dim, Scalar dx, const 
         if (!((p2 - p1).norm() > 0))
             throw InputError(d.locationOf("point2"), "the cylinder's 'point2' must differ from 'point1'", "point2");
         shape = std::make_unique<CylinderShape>(p1, p2, r);
+    } else if (type == "mesh") { // MeshShape.cpp
+        shape = readMeshShape(d, dim, dx);
     } else if (type == "polygon") {
         if (dim != 2)
             throw InputError(d.locationOf("type"), "a polygon is 2D only (in 3D use a box, cylinder, sphere or mesh)",
