@@ -123,7 +123,7 @@ TEST(Shape, BadPolygonsAndShapesAreRefused) {
     EXPECT_NE(errorOf([] { shape("type cylinder; point1 (0 0 0); point2 (0 0 0); radius 1;", 3); })
                   .find("must differ"),
               std::string::npos);
-    EXPECT_NE(errorOf([] { shape("type cone; centre (0 0 0);", 2); }).find("valid: (box cylinder sphere polygon)"),
+    EXPECT_NE(errorOf([] { shape("type cone; centre (0 0 0);", 2); }).find("valid: (box cylinder sphere polygon mesh)"),
               std::string::npos);
 }
 
