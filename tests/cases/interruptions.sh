@@ -153,13 +153,13 @@ echo "ok SIGKILL between the renames: the .pvd behind by 0.01 only (never ahead)
 newCase spacing 0.01
 "$solver" -case "$work/spacing" > "$work/spacing/log" 2>&1 || fail "spacing: the first run failed"
 sed -i -E "s/^startFrom .*/startFrom latestTime;/; s/^endTime .*/endTime 0.02;/" "$work/spacing/system/controlDict"
-sed -i -E "s/^particleSpacing .*/particleSpacing 0.002;/" "$work/spacing/constant/fluidProperties"
+sed -i -E "s/^particleSpacing .*/particleSpacing 0.0028575;/" "$work/spacing/constant/fluidProperties"
 before=$(ls -a "$work/spacing" | tr '\n' ' '; cat "$work/spacing/spacing.pvd")
 status=0
 "$solver" -case "$work/spacing" > "$work/spacing.log2" 2> "$work/spacing.err" || status=$?
 [ $status -eq 1 ] || fail "spacing: exit status $status, not 1"
 [ "$(wc -l < "$work/spacing.err")" -eq 1 ] || fail "spacing: not one line: $(cat "$work/spacing.err")"
-grep -qE "^$work/spacing/constant/fluidProperties:[0-9]+:1: error: particleSpacing 0.002 is not the 0.00142875 of time 0.01 \(.*0.01/uniform/particles\): a restart continues its particles; use particleSpacing 0.00142875, or 'startFrom startTime;' to start anew \(keyword 'particleSpacing'\)$" "$work/spacing.err" \
+grep -qE "^$work/spacing/constant/fluidProperties:[0-9]+:1: error: particleSpacing 0.0028575 is not the 0.00142875 of time 0.01 \(.*0.01/uniform/particles\): a restart continues its particles; use particleSpacing 0.00142875, or 'startFrom startTime;' to start anew \(keyword 'particleSpacing'\)$" "$work/spacing.err" \
     || fail "spacing: message '$(cat "$work/spacing.err")'"
 [ "$(ls -a "$work/spacing" | tr '\n' ' '; cat "$work/spacing/spacing.pvd")" = "$before" ] || fail "spacing: something was written or moved"
 echo "ok restart with another particleSpacing: exit status 1, '$(cat "$work/spacing.err")'"

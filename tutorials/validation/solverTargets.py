@@ -260,7 +260,7 @@ def dam_break(solver, args, obstacle):
             g = open(geo).read()
             s, e = block(g, "walls")
             g = g[:e - 1] + ("    obstacle\n    {\n        type    box;\n        min     (0.2 0 0);\n"
-                              "        max     (0.24 0.04 0);\n    }\n}") + g[e:]
+                              "        max     (0.24 0.04 0);\n        snapToLattice yes;\n    }\n}") + g[e:]
             open(geo, "w").write(g)
     ok = run(case, args.spindrift, args.threads)
     row = end_line(case)

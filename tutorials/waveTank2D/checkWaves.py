@@ -42,7 +42,7 @@ def main():
     p.add_argument("--height-tolerance", type=float, default=0.05)
     p.add_argument("--period-tolerance", type=float, default=0.01)
     p.add_argument("--reflector", type=float, default=None, help="x of the far end [m]")
-    p.add_argument("--piston-face", type=float, default=0.1, help="x of the piston's face at rest [m]")
+    p.add_argument("--piston-face", type=float, default=0.12, help="x of the piston's face at rest [m]")
     p.add_argument("--min-waves", type=int, default=2)
     p.add_argument("--height-range", type=float, nargs=2, metavar=("LO", "HI"),
                    help="accept a mean height from LO H to HI H instead of the tolerance (a coarse quick mode)")
