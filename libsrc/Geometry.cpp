@@ -474,24 +474,6 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
         for (const auto& name : walls->keywords()) {
             const Dictionary& w = walls->subDict(name);
             const std::string type = w.getWord("type", wallTypes());
-            if (type == "mesh") {
-                checkName(*walls, name, "wall");
-                if (name == "fluid")
-                    throw InputError(walls->locationOf(name), "a wall may not be called 'fluid' (the fluid's own "
-                                                              "output is fluid.vtp)", name);
-                SampledWall& sampled = out.walls.emplace_back();
-                sampled.name = name;
-                sampled.where = walls->locationOf(name);
-                sampled.motion = w.findDict("motion");
-                w.markUsed("motion");
-                sampleMeshWall(w, dx, dim, sampled);
-                meshWalls.push_back(&sampled - out.walls.data());
-                w.checkAllKeywordsUsed();
-                continue;
-            }
-            const int layers = w.getOrDefault<int>("layers", 3);
-            if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
-            const Scalar L = layers * dx;
             checkName(*walls, name, "wall");
             if (name == "fluid")
                 throw InputError(walls->locationOf(name), "a wall may not be called 'fluid' (the fluid's own "
@@ -500,9 +482,18 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
             sampled.name = name;
             sampled.where = walls->locationOf(name);
             sampled.motion = w.findDict("motion");
+            w.markUsed("motion");
+            if (type == "mesh") {
+                sampleMeshWall(w, dx, dim, sampled);
+                meshWalls.push_back(&sampled - out.walls.data());
+                w.checkAllKeywordsUsed();
+                continue;
+            }
+            const int layers = w.getOrDefault<int>("layers", 3);
+            if (layers < 1) throw InputError(w.locationOf("layers"), "'layers' must be at least 1", "layers");
+            const Scalar L = layers * dx;
             sampled.container = type == "container";
             sampled.thickness = L;
-            w.markUsed("motion");
             std::vector<Vec3>& wallPositions = sampled.positions;
             if (type == "container") {
                 const Box box = readBox(w, dim);

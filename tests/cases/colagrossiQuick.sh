@@ -7,7 +7,7 @@
 set -euo pipefail
 . "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: the case's input, never its results
 solver=$1 source=$2
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/figures.sh" # fail, within
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 case=$work/damBreakColagrossi2D
@@ -22,15 +22,8 @@ python=${SPINDRIFT_PYTHON:-python3}
 "$python" -c 'import numpy' 2>/dev/null || python=/usr/bin/python3
 (cd "$case" && "$python" evaluate.py --no-plot) > "$case/log.evaluate" 2>&1 || { cat "$case/log.evaluate"; fail "evaluate.py failed"; }
 cat "$case/log.evaluate"
-figure() { sed -n "s/^Figure: $1 = \([^ ]*\).*/\1/p" "$case/log.evaluate"; }
+figures="$case/log.evaluate"
 # within lo hi: lo <= value <= hi (a nan or a missing figure fails)
-within() {
-    local name=$1 lo=$2 hi=$3 v
-    v=$(figure "$name")
-    awk -v v="$v" -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(v != "" && v + 0 == v && v >= lo && v <= hi) }' \
-        || fail "$name = '$v' outside [$lo, $hi]"
-    echo "$name = $v in [$lo, $hi]"
-}
 # arrival at the far wall (front within dx of it), T: measured 2.49 at H/20 (2.43 at H/40);
 # the published delta-SPH runs 2.37-2.41, the old akinci set-up 2.69-2.75 at H/40
 within wallArrival 2.38 2.58

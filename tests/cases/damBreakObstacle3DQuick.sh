@@ -10,7 +10,7 @@
 set -euo pipefail
 . "$(dirname "$0")/../../etc/RunFunctions" # cloneCase: the case's input, never its results
 solver=$1 source=$2
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/figures.sh" # fail, within
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 case=$work/damBreakObstacle3D
@@ -23,15 +23,8 @@ grep -q '^endTime  *1.6;' "$case/system/controlDict" || fail "could not set endT
 "$solver" -case "$case" -threads 1 > "$case/log.spindrift" 2>&1 || { tail -20 "$case/log.spindrift"; fail "the solver failed"; }
 (cd "$case" && "$python" evaluate.py --no-plot) > "$case/log.evaluate" 2>&1 || { cat "$case/log.evaluate"; fail "evaluate.py failed"; }
 cat "$case/log.evaluate"
-figure() { sed -n "s/^Figure: $1 = \([^ ]*\).*/\1/p" "$case/log.evaluate"; }
+figures="$case/log.evaluate"
 # within lo hi: lo <= value <= hi (a nan or a missing figure fails)
-within() {
-    local name=$1 lo=$2 hi=$3 v
-    v=$(figure "$name")
-    awk -v v="$v" -v lo="$lo" -v hi="$hi" 'BEGIN { exit !(v != "" && v + 0 == v && v >= lo && v <= hi) }' \
-        || fail "$name = '$v' outside [$lo, $hi]"
-    echo "$name = $v in [$lo, $hi]"
-}
 # the water gets past the box's impacted face (x = 0.8245 m) to the x = 0 wall: measured 0.0024 m
 # (a particle at rest against the wall: 0.5 dx = 0.0275 m from its face at x = -0.025)
 within frontMin -0.1 0.8

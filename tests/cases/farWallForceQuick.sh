@@ -8,19 +8,13 @@
 #   farWallForceQuick.sh <spindrift> <pvpython> <case dir>
 set -euo pipefail
 solver=$1 pvpython=$2 source=$3
-fail() { echo "FAIL: $*"; exit 1; }
+. "$(dirname "$0")/figures.sh" # fail, within
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$pvpython" "$source/farWallForce.py" --res 20 --endT 7 --work "$work/run" --spindrift "$solver" --no-plot \
     > "$work/figures" 2>&1 || { cat "$work/figures"; fail "farWallForce.py failed"; }
 grep -v "^Warning" "$work/figures"
-figure() { sed -n "s/^Figure: $1 = \([^ ]*\).*/\1/p" "$work/figures"; }
-within() {
-    local v
-    v=$(figure "$1")
-    awk -v v="$v" -v lo="$2" -v hi="$3" 'BEGIN { exit !(v != "" && v + 0 == v && v >= lo && v <= hi) }' ||
-        fail "$1 = '$v', not within [$2, $3]"
-}
+figures="$work/figures"
 within forceDifference -15 15
 within forceMean 0.2 0.6      # rho0 g H^2 (measured 0.37): the water standing against the wall
 within forcePeak 0.3 3
