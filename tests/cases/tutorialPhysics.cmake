@@ -79,8 +79,9 @@ if(PVPYTHON)
     --volume 0.01)
   set_property(TEST Tutorial.rollingTank3D APPEND PROPERTY ENVIRONMENT "TUTORIAL_CHECK=checkRolling.py --from 1")
   # waveTank2D, quick mode: dx 0.04 instead of 0.02 (H/dx 2.5) and 12 s of 13, the first gauge
-  # (2 wavelengths): period within 1 %, height 0.4-1.05 H (measured: 3 waves, T -0.45 %,
-  # H 0.0595 m = -40 %; the full case at dx 0.02: T -0.23 %, H -29 %: docs/VALIDATION.md)
+  # (2 wavelengths): period within 1 %, height 0.4-1.05 H (measured: 3 waves, T -0.38 %,
+  # H 0.0574 m = -43 %; the full case at dx 0.02: T -0.23 %, H -29 %; the waves' damping:
+  # validation/standingWave2D, docs/VALIDATION.md)
   tutorial_physics(waveTank2D waveTank2D "constant/fluidProperties:particleSpacing=0.04,system/controlDict:endTime=12"
     --inside --volume 0.01)
   set_property(TEST Tutorial.waveTank2D APPEND PROPERTY ENVIRONMENT
