@@ -74,11 +74,13 @@ void checkName(const Dictionary& parent, const std::string& name, const char* wh
                          name);
 }
 
-// A wall box (or a container's inside) must be a whole number of spacings along each axis for
-// the lattice to fill it face to face. One that is not is refused (its entry, `max`, the nearest
-// valid max values), unless the entry says `snapToLattice yes;`: then its max is moved to
-// min + round(size/Δx) Δx, which the log says.
-void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedName, Scalar dx, int dim) {
+// A box (a wall, a container's inside, a fluid block, a body) must be a whole number of spacings
+// along each axis for the lattice to fill it face to face: a fluid block of 27.5 spacings would
+// hold 28 rows of water, a body's particles would not cover its mass. One that is not is refused
+// (its entry, `max`, the nearest valid max values), unless the entry says `snapToLattice yes;`:
+// then its max is moved to min + round(size/Δx) Δx, which the log says. `what` names it ("wall").
+void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedName, Scalar dx, int dim,
+                   const char* what) {
     const bool snap = entry.getOrDefault<bool>("snapToLattice", false);
     for (int a = 0; a < dim; ++a) {
         const Scalar cells = std::round((box.max[a] - box.min[a]) / dx);
@@ -97,11 +99,22 @@ void snapToLattice(Box& box, const Dictionary& entry, const std::string& scopedN
                   << ")";
                 throw InputError(entry.locationOf("max"), s.str(), "max");
             }
-            s << "; the wall is placed at max " << "xyz"[a] << " = " << box.min[a] + cells * dx << " (snapToLattice)";
+            s << "; the " << what << " is placed at max " << "xyz"[a] << " = " << box.min[a] + cells * dx << " (snapToLattice)";
             log::info(locatedMessage(entry.locationOf("max"), "", s.str()));
             box.max[a] = box.min[a] + cells * dx;
         }
     }
+}
+
+// An entry's shape; a box made a whole number of spacings (or refused: snapToLattice).
+std::unique_ptr<Shape> snappedShape(const Dictionary& entry, const std::string& scopedName, Scalar dx, int dim,
+                                    const char* what) {
+    std::unique_ptr<Shape> shape = readShape(entry, dim, dx);
+    if (!shape->isBox()) return shape;
+    Box box;
+    shape->bounds(box.min, box.max);
+    snapToLattice(box, entry, scopedName, dx, dim, what);
+    return makeBox(box.min, box.max, dim);
 }
 
 const std::vector<std::string>& wallTypes() {
@@ -509,7 +522,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                 }
                 // Inner extent must be a whole number of spacings for the lattice to continue.
                 Box inner = box;
-                snapToLattice(inner, w, "walls." + name, dx, dim);
+                snapToLattice(inner, w, "walls." + name, dx, dim, "wall");
                 const Vec3 lo = inner.min, hi = inner.max;
                 sampled.min = lo;
                 sampled.max = hi;
@@ -533,14 +546,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
                     if (outside) wallPositions.push_back(p);
                 });
             } else { // a solid: the `layers` outermost lattice layers inside its surface
-                std::unique_ptr<Shape> shape = readShape(w, dim, dx);
-                if (shape->isBox()) { // a box is a whole number of spacings (or snapped to one)
-                    Box solid;
-                    shape->bounds(solid.min, solid.max);
-                    snapToLattice(solid, w, "walls." + name, dx, dim);
-                    shape = makeBox(solid.min, solid.max, dim);
-                }
-                sampled.shape = std::move(shape);
+                sampled.shape = snappedShape(w, "walls." + name, dx, dim, "wall");
                 solids.push_back(sampled.shape);
                 sampled.shape->bounds(sampled.min, sampled.max);
                 sampleShape(*sampled.shape, dx, L, wallPositions);
@@ -556,7 +562,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     if (const Dictionary* bodies = geometry.findDict("bodies")) {
         for (const auto& name : bodies->keywords()) {
             const Dictionary& b = bodies->subDict(name);
-            std::shared_ptr<const Shape> shape = readShape(b, dim, dx);
+            std::shared_ptr<const Shape> shape = snappedShape(b, "bodies." + name, dx, dim, "body");
             const int layers = b.getOrDefault<int>("layers", 3);
             if (layers < 1) throw InputError(b.locationOf("layers"), "'layers' must be at least 1", "layers");
             if (name == "fluid" || (geometry.findDict("walls") && geometry.subDict("walls").found(name)))
@@ -632,7 +638,7 @@ SampledGeometry sampleGeometry(const Dictionary& geometry, Scalar dx, int dim, c
     for (const auto& name : fluid.keywords()) {
         const Dictionary& f = fluid.subDict(name);
         checkName(fluid, name, "fluid block");
-        const std::unique_ptr<Shape> shape = readShape(f, dim, dx);
+        const std::unique_ptr<Shape> shape = snappedShape(f, "fluid." + name, dx, dim, "fluid block");
         Box box;
         shape->bounds(box.min, box.max);
         if (!containers.empty()) {
