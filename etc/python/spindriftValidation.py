@@ -222,6 +222,25 @@ def label_points(ax, xs, ys, texts, fontsize=8):
         placed.append(box)
 
 
+def running_mean(t, y, width):
+    """Centred running mean of y(t) over the samples with |t_k - t_i| <= width/2 (t increasing)."""
+    c = np.concatenate([[0.0], np.cumsum(y)])
+    lo = np.searchsorted(t, t - 0.5 * width, side="left")
+    hi = np.searchsorted(t, t + 0.5 * width, side="right")
+    return (c[hi] - c[lo]) / (hi - lo)
+
+
+def first_crossing(t, y, level):
+    """The first t at which y >= level (linear between the samples around it); nan if never."""
+    hit = np.nonzero(y >= level)[0]
+    if hit.size == 0:
+        return np.nan
+    k = hit[0]
+    if k == 0:
+        return float(t[0])
+    return float(t[k - 1] + (level - y[k - 1]) / (y[k] - y[k - 1]) * (t[k] - t[k - 1]))
+
+
 def figure_definition(name):
     """(axis label, definition) of a case's error figure; the name alone for an unknown one."""
     return FIGURE_DEFINITIONS.get(name, (name, ""))

@@ -63,30 +63,13 @@ def experiment():
     return {name: rows[:, k] for k, name in enumerate(names)}
 
 
-def running_mean(t, y, width):
-    c = np.concatenate([[0.0], np.cumsum(y)])
-    lo = np.searchsorted(t, t - 0.5 * width, side="left")
-    hi = np.searchsorted(t, t + 0.5 * width, side="right")
-    return (c[hi] - c[lo]) / (hi - lo)
-
-
-def first_crossing(t, y, level):
-    hit = np.nonzero(y >= level)[0]
-    if hit.size == 0:
-        return np.nan
-    k = hit[0]
-    if k == 0:
-        return float(t[0])
-    return float(t[k - 1] + (level - y[k - 1]) / (y[k] - y[k - 1]) * (t[k] - t[k - 1]))
-
-
 def impact(t, p):
     """(onset, peak time) of a pressure trace: the first crossing of ONSET and the largest 5 ms
     running mean within 0.1 s after it."""
-    onset = first_crossing(t, p, ONSET)
+    onset = sv.first_crossing(t, p, ONSET)
     if not np.isfinite(onset):
         return np.nan, np.nan
-    smooth = running_mean(t, p, RUNNING_MEAN)
+    smooth = sv.running_mean(t, p, RUNNING_MEAN)
     near = (t >= onset - 0.01) & (t <= onset + 0.1)
     return onset, float(t[near][np.argmax(smooth[near])])
 
@@ -126,7 +109,7 @@ def main():
                         % (unit, 100 * rms / scale, name, scale, unit)))
         if name[0] == "P":  # the same of the simulation's 5 ms running mean: without the acoustic spikes
             t, y = sim[name]
-            smooth = np.interp(te[inside], t, running_mean(t, y, RUNNING_MEAN))
+            smooth = np.interp(te[inside], t, sv.running_mean(t, y, RUNNING_MEAN))
             rms = float(np.sqrt(np.mean((smooth - exp[name][inside]) ** 2)))
             figures.append(("rms%sMean" % name, rms, "Pa; %.1f %% (the simulation's 5 ms running mean)"
                             % (100 * rms / scale)))

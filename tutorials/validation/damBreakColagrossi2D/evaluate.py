@@ -61,26 +61,6 @@ RUNNING_MEAN = 5e-3         # s, the width of the centred running mean
 P1_HEIGHT, P4_HEIGHT = 0.006, 0.16   # m: sensors P1 and P4 of De Courcy et al. (2024) at H = 0.6 m
 
 
-def running_mean(t, y, width):
-    """Centred running mean of y(t) over the samples with |t_k - t_i| <= width/2."""
-    c = np.concatenate([[0.0], np.cumsum(y)])
-    lo = np.searchsorted(t, t - 0.5 * width, side="left")
-    hi = np.searchsorted(t, t + 0.5 * width, side="right")
-    return (c[hi] - c[lo]) / (hi - lo)
-
-
-def first_crossing(T, front, threshold):
-    """First T at which front >= threshold (linear between the samples around it); nan if never."""
-    hit = np.nonzero(front >= threshold)[0]
-    if hit.size == 0:
-        return np.nan
-    k = hit[0]
-    if k == 0:
-        return T[0]
-    f0, f1 = front[k - 1], front[k]
-    return T[k - 1] + (T[k] - T[k - 1]) * (threshold - f0) / (f1 - f0)
-
-
 def probe_columns(table):
     """{y: column name} of the pressure columns 'p(x,y)'."""
     out = {}
@@ -99,7 +79,7 @@ def nearest(columns, y):
 def noise(T, t, p, window):
     """Standard deviation of p minus its running mean over the samples with T in 'window';
     nan when the run ends before the window."""
-    smooth = running_mean(t, p, RUNNING_MEAN)
+    smooth = sv.running_mean(t, p, RUNNING_MEAN)
     inside = (T >= window[0]) & (T <= window[1])
     if T[-1] < window[0] or inside.sum() < 10:
         return np.nan, smooth
@@ -164,7 +144,7 @@ def main():
 
     front = sv.read_dat("front")
     T_front = front.time * scale_t
-    arrival = first_crossing(T_front, front["front"], L - dx)
+    arrival = sv.first_crossing(T_front, front["front"], L - dx)
     print("Figure: wallArrival = %.4f (T = t sqrt(g/H) at which the front is first within dx of the far wall"
           "; H/dx = %.0f; run ends at T = %.3g)" % (arrival, H / dx, T_front[-1]))
 
@@ -186,8 +166,8 @@ def main():
     print("Figure: pressureNoise = %.4f (std of p/rho0gH minus its 5 ms running mean, %g <= T <= %g, probe y = "
           "%.3f m = %.3fH%s)" % (sigma, NOISE_WINDOW[0], NOISE_WINDOW[1], y_noise, y_noise / H, ends))
     print("Figure: pressureNoiseP4 = %.4f (the same at y = %.3f m = %.3fH)" % (sigma_p4, y_p4, y_p4 / H))
-    smooth_p1 = running_mean(t, p_p1, RUNNING_MEAN)
-    onset = first_crossing(T, p_p1, ONSET)
+    smooth_p1 = sv.running_mean(t, p_p1, RUNNING_MEAN)
+    onset = sv.first_crossing(T, p_p1, ONSET)
     print("Figure: pressureOnset = %.4f (T at which p/rho0gH at y = %.3f m first exceeds %g; De Courcy et al. "
           "2024: 2.36)" % (onset, y_p1, ONSET))
     ref_p1 = reference("decourcy2024_P1.csv", "p")
@@ -218,7 +198,7 @@ def main():
     p4_ref = float(pb4[ref4].mean()) if ref4.any() else np.nan
     print("Figure: p4Mean = %.3f (mean p/rho0gH at y = %.3f m, %g <= T <= %g)" % (p4_mean, y_p4, *NOISE_WINDOW))
     print("Figure: p4MeanRef = %.3f (De Courcy et al. 2024, the same window)" % p4_ref)
-    slow = running_mean(t, smooth_noise, SLOW_MEAN)
+    slow = sv.running_mean(t, smooth_noise, SLOW_MEAN)
     inside = (T >= OSCILLATION_WINDOW[0]) & (T <= OSCILLATION_WINDOW[1])
     oscillation = float(np.std((smooth_noise - slow)[inside])) if T[-1] >= OSCILLATION_WINDOW[1] else np.nan
     print("Figure: pressureOscillation = %.4f (std of the 5 ms running mean of p/rho0gH about its 50 ms running "

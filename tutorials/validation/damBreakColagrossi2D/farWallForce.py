@@ -85,14 +85,6 @@ def prepare(case, res, end_t):
     return dx
 
 
-def running_mean(t, v, width):
-    out = np.empty_like(v)
-    for k in range(len(t)):
-        sel = np.abs(t - t[k]) <= width / 2
-        out[k] = v[sel].mean()
-    return out
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--res", type=int, default=40)
@@ -135,7 +127,7 @@ def main():
     T = t * np.sqrt(G / H)
     if T[-1] <= COLUMN_START:
         sys.exit("the run ended before T = %g" % COLUMN_START)
-    fm, pm = running_mean(t, fx, RUNNING_MEAN), running_mean(t, integral, RUNNING_MEAN)
+    fm, pm = sv.running_mean(t, fx, RUNNING_MEAN), sv.running_mean(t, integral, RUNNING_MEAN)
 
     def means(lo, hi):
         w = (T >= lo) & (T <= hi)
