@@ -1,0 +1,114 @@
+// The kernel gradient correction (renormalisation) of Bonet & Lok (1999), Comput. Methods Appl.
+// Mech. Engrg. 180, 97–115, doi:10.1016/S0045-7825(99)00051-1; docs/MODELS.md §gradientCorrection.
+//   M_i = −Σ_j V_j r_ij ⊗ ∇_i W_ij − Σ_b V_b r_ib ⊗ ∇_i W_ib,   L_i = M_i⁻ᵀ,
+// so that Σ_j V_j (f_j − f_i) L_i ∇_i W_ij is the exact gradient of a linear f; walls count (V_b =
+// M_b/ρ_b), so a particle beside a wall has a full matrix. Near a free surface M_i loses rank
+// (its smallest eigenvalue λ_i, 1 inside, ≈ 0.5 on a flat surface): there L_i is blended with the
+// identity, L_i = w M_i⁻ᵀ + (1 − w) I with w = clamp((λ_i − 0.6)/0.2, 0, 1), so a surface particle
+// has the plain gradient.
+//
+// The corrected symmetric pressure acceleration (q = p/ρ²; each particle's correction on its own
+// side of the pair, as SPHinXsys' weighted kernel gradient correction pairs p_i B_i + p_j B_j):
+//   a_i = −Σ_j m (q_i L_i + q_j L_j) ∇_i W_ij − Σ_b M_b (q_i + q_b) L_i ∇_i W_ib
+// The pair terms stay equal and opposite (linear momentum is kept, and a wall's reaction is
+// what it gives the fluid); they are no longer along r_ij (angular momentum is not kept exactly).
+#pragma once
+
+#include "PairLoop.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#include <algorithm>
+
+namespace spindrift {
+
+using Mat3 = Eigen::Matrix<Scalar, 3, 3>;
+
+// M_i = −Σ V r_ij ⊗ ∇W_ij over the fluid and the boundaries.
+struct KernelMomentTerm {
+    using Sum = Mat3;
+    static constexpr bool usesGradient = true;
+    using Particle = Scalar; // ρ_i
+    const Scalar* rho;
+    Scalar m;
+    Particle particle(std::size_t i) const { return rho[i]; }
+    void fluid(Scalar, const Pair& p, Sum& sum) const { sum.noalias() -= (m / rho[p.j]) * p.r * p.gradW.transpose(); }
+    void wall(Scalar rhoi, const WallPair& p, Sum& sum) const {
+        const Scalar rhob = p.src.mirrored ? rhoi : p.src.rho[p.j];
+        sum.noalias() -= (p.mass() / rhob) * p.r * p.gradW.transpose();
+    }
+};
+
+// L_i of every particle of the fluid at positions x (in 2D the z row and column are zero).
+inline void kernelCorrectionMatrices(const Scene& s, const ParticleSystem& fluid, const std::vector<Vec3>& x,
+                                     std::vector<Mat3>& L) {
+    const int d = s.physics.dimension;
+    L.resize(x.size());
+    const KernelMomentTerm term{fluid.particles.density().data(), fluid.particles.particleMass()};
+    forEachPairSum(s, fluid, x, term, [&](std::size_t i, Scalar, const Mat3& M) {
+        Scalar lambda;
+        if (d == 2) {
+            const Scalar a = M(0, 0), c = M(1, 1), b = Scalar(0.5) * (M(0, 1) + M(1, 0));
+            lambda = Scalar(0.5) * (a + c) - std::sqrt(Scalar(0.25) * (a - c) * (a - c) + b * b);
+        } else {
+            Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+            eigen.computeDirect(Scalar(0.5) * (M + M.transpose()), Eigen::EigenvaluesOnly);
+            lambda = eigen.eigenvalues()[0];
+        }
+        const Scalar w = std::clamp((lambda - Scalar(0.6)) / Scalar(0.2), Scalar(0), Scalar(1));
+        Mat3 Li = Mat3::Identity();
+        if (d == 2) Li(2, 2) = 0;
+        if (w > 0) {
+            Mat3 inverse = Mat3::Zero();
+            if (d == 2) inverse.topLeftCorner<2, 2>() = M.topLeftCorner<2, 2>().inverse().transpose();
+            else inverse = M.inverse().transpose();
+            Li = w * inverse + (1 - w) * Li;
+        }
+        L[i] = Li;
+    });
+}
+
+// The corrected symmetric pressure term of q = p/ρ² (above).
+struct CorrectedSymmetricPressureTerm {
+    struct Sum {
+        Vec3 fluid = Vec3::Zero(), wall = Vec3::Zero(); // Σ_j (q_i L_i + q_j L_j) ∇W_ij, Σ_b M_b (q_i + q_b) L_i ∇W_ib
+    };
+    static constexpr bool usesGradient = true;
+    struct Particle {
+        Scalar q;
+        Mat3 qL; // q_i L_i
+        Mat3 L;
+    };
+    const Scalar* q;
+    const Mat3* L;
+    Particle particle(std::size_t i) const { return {q[i], q[i] * L[i], L[i]}; }
+    void fluid(const Particle& pi, const Pair& p, Sum& sum) const { sum.fluid.noalias() += (pi.qL + q[p.j] * L[p.j]) * p.gradW; }
+    void wall(const Particle& pi, const WallPair& p, Sum& sum) const {
+        const Scalar qb = p.src.mirrored ? pi.q : p.src.p[p.j] / (p.src.rho[p.j] * p.src.rho[p.j]);
+        sum.wall.noalias() += (p.mass() * (pi.q + qb)) * (pi.L * p.gradW);
+    }
+};
+
+// a_i += the corrected symmetric pressure acceleration of q = p/ρ² (q and L of every particle).
+inline void addCorrectedSymmetricPressureAcceleration(const Scene& s, ParticleSystem& fluid, const std::vector<Scalar>& q,
+                                                      const std::vector<Mat3>& L) {
+    const Scalar m = fluid.particles.particleMass();
+    auto& a = fluid.particles.acceleration();
+    forEachPairSum(s, fluid, fluid.particles.position(), CorrectedSymmetricPressureTerm{q.data(), L.data()},
+                   [&](std::size_t i, const auto&, const auto& sum) { a[i] -= m * sum.fluid + sum.wall; });
+}
+
+// Their reactions on the walls and bodies: a_ib = −M_b (q_i + q_b) L_i ∇W_ib.
+inline void addCorrectedSymmetricPressureReactions(const Scene& s, const ParticleSystem& fluid, const std::vector<Scalar>& q,
+                                                   const std::vector<Mat3>& L, Reactions& reactions) {
+    const CorrectedSymmetricPressureTerm term{q.data(), L.data()};
+    addReactions(s, fluid, fluid.particles.position(), term,
+                 [&](std::size_t, const CorrectedSymmetricPressureTerm::Particle& pi, const WallPair& p) {
+                     CorrectedSymmetricPressureTerm::Sum c;
+                     term.wall(pi, p, c);
+                     return Vec3(-c.wall);
+                 }, ForceKind::pressure, reactions);
+}
+
+} // namespace spindrift
