@@ -72,7 +72,8 @@ TEST(KernelCorrection, LinearPressureGradientExactInsideALattice) {
         while (!b.inside(centre)) ++centre;
         for (std::size_t i = 0; i < a.size(); ++i) {
             if (!b.inside(i)) continue;
-            EXPECT_NEAR((a[i] - exact).norm() / exact.norm(), 0.0, test::tol(1e-9, 1e-4)) << dim << "D, particle " << i;
+            // float: the pair sums of p ~ 5 kPa cancel to a gradient of 10 kPa/m over a 2.6 mm support
+            EXPECT_NEAR((a[i] - exact).norm() / exact.norm(), 0.0, test::tol(1e-9, 1e-3)) << dim << "D, particle " << i;
             // L_i is the inverse transpose of the lattice's moment, the same everywhere inside
             EXPECT_NEAR((L[i] - L[centre]).norm(), 0.0, test::tol(1e-9, 1e-5));
         }
