@@ -6,7 +6,8 @@
 # (the tank arguments are passed on to spindriftFluidInBox, see FluidInBox.cpp)
 # kind is a sphSchemes entry (kernel, pressure, viscosity, integrator). For pressure the
 # tutorial's entry is kept under the name pressureReference and the new one copies it with
-# only the type changed (the Tait options gamma/soundSpeed/clampNegativePressure are shared);
+# only the type changed (the Tait options gamma/soundSpeed/clampNegativePressure are shared;
+# wcsph's gradientCorrection is dropped for another type);
 # the other entries are replaced by `{ type <type>; }` (the model's defaults). Either form of
 # entry works: a block, or `kind $someDict;`. kind `none` runs the tutorial's own models.
 set -euo pipefail
@@ -25,6 +26,8 @@ elif ! grep -qE "^$kind(\s|\$)" $schemes; then
     echo "FAIL: no '$kind' entry in $schemes"; exit 1
 elif [ "$kind" = pressure ]; then
     sed -i -E "s/^pressure(\s|\$)/pressureReference\1/" $schemes
+    # wcsph's own option (its kernel-corrected gradient) is not a Tait option the others share
+    [ "$type" = wcsph ] || sed -i -E "/^\s*gradientCorrection\s/d" $schemes
     printf '\npressure\n{\n    $pressureReference;\n    type        %s;\n}\n' "$type" >> $schemes
 elif grep -qE "^$kind\s+\\$" $schemes; then
     sed -i -E "s/^$kind\s+\\$.*/$kind { type $type; }/" $schemes
