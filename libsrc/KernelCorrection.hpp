@@ -20,6 +20,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cmath>
 
 namespace spindrift {
 
@@ -40,6 +41,18 @@ struct KernelMomentTerm {
     }
 };
 
+// The smallest eigenvalue of M's symmetric part in the problem's d dimensions (closed form in 2D):
+// 1 for a full neighbourhood, ≈ 0.5 on a flat free surface (Marrone et al. 2010's λ).
+inline Scalar smallestEigenvalue(const Mat3& M, int d) {
+    if (d == 2) {
+        const Scalar a = M(0, 0), c = M(1, 1), b = Scalar(0.5) * (M(0, 1) + M(1, 0));
+        return Scalar(0.5) * (a + c) - std::sqrt(Scalar(0.25) * (a - c) * (a - c) + b * b);
+    }
+    Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+    eigen.computeDirect(Scalar(0.5) * (M + M.transpose()), Eigen::EigenvaluesOnly);
+    return eigen.eigenvalues()[0];
+}
+
 // L_i of every particle of the fluid at positions x (in 2D the z row and column are zero).
 inline void kernelCorrectionMatrices(const Scene& s, const ParticleSystem& fluid, const std::vector<Vec3>& x,
                                      std::vector<Mat3>& L) {
@@ -47,16 +60,7 @@ inline void kernelCorrectionMatrices(const Scene& s, const ParticleSystem& fluid
     L.resize(x.size());
     const KernelMomentTerm term{fluid.particles.density().data(), fluid.particles.particleMass()};
     forEachPairSum(s, fluid, x, term, [&](std::size_t i, Scalar, const Mat3& M) {
-        Scalar lambda;
-        if (d == 2) {
-            const Scalar a = M(0, 0), c = M(1, 1), b = Scalar(0.5) * (M(0, 1) + M(1, 0));
-            lambda = Scalar(0.5) * (a + c) - std::sqrt(Scalar(0.25) * (a - c) * (a - c) + b * b);
-        } else {
-            Eigen::SelfAdjointEigenSolver<Mat3> eigen;
-            eigen.computeDirect(Scalar(0.5) * (M + M.transpose()), Eigen::EigenvaluesOnly);
-            lambda = eigen.eigenvalues()[0];
-        }
-        const Scalar w = std::clamp((lambda - Scalar(0.6)) / Scalar(0.2), Scalar(0), Scalar(1));
+        const Scalar w = std::clamp((smallestEigenvalue(M, d) - Scalar(0.6)) / Scalar(0.2), Scalar(0), Scalar(1));
         Mat3 Li = Mat3::Identity();
         if (d == 2) Li(2, 2) = 0;
         if (w > 0) {

@@ -486,16 +486,22 @@ void addScaledReactions(const Scene& s, const ParticleSystem& fluid, const Term&
     }, kind, reactions);
 }
 
-// a_i += the symmetric pressure acceleration of p and ρ at the fluid's positions. p/ρ² is taken
-// once per particle (in 'pOverRho2', the caller's scratch storage), not once per pair.
-inline void addSymmetricPressureAcceleration(Scene& s, ParticleSystem& fluid, std::vector<Scalar>& pOverRho2) {
+// q_i = p_i/ρ_i² of every particle of the fluid (taken once per particle, not once per pair).
+inline void pressureOverDensitySquared(const ParticleSystem& fluid, std::vector<Scalar>& q) {
     const auto& p = fluid.particles.pressure();
     const auto& rho = fluid.particles.density();
-    pOverRho2.resize(p.size());
-    Scalar* q = pOverRho2.data();
-    forEachIndex(p.size(), [&](std::size_t i) { q[i] = p[i] / (rho[i] * rho[i]); });
+    q.resize(p.size());
+    Scalar* out = q.data();
+    forEachIndex(p.size(), [&](std::size_t i) { out[i] = p[i] / (rho[i] * rho[i]); });
+}
+
+// a_i += the symmetric pressure acceleration of p and ρ at the fluid's positions (p/ρ² in
+// 'pOverRho2', the caller's scratch storage).
+inline void addSymmetricPressureAcceleration(Scene& s, ParticleSystem& fluid, std::vector<Scalar>& pOverRho2) {
+    pressureOverDensitySquared(fluid, pOverRho2);
     auto& a = fluid.particles.acceleration();
-    symmetricPressureAcceleration(s, fluid, fluid.particles.position(), q, [&](std::size_t i, const Vec3& ai) { a[i] += ai; });
+    symmetricPressureAcceleration(s, fluid, fluid.particles.position(), pOverRho2.data(),
+                                  [&](std::size_t i, const Vec3& ai) { a[i] += ai; });
 }
 
 } // namespace spindrift

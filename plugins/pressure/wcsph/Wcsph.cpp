@@ -33,10 +33,7 @@ public:
             addSymmetricPressureAcceleration(s, fluid, pOverRho2_);
             return;
         }
-        const auto& p = fluid.particles.pressure();
-        const auto& rho = fluid.particles.density();
-        pOverRho2_.resize(p.size());
-        forEachIndex(p.size(), [&](std::size_t i) { pOverRho2_[i] = p[i] / (rho[i] * rho[i]); });
+        pressureOverDensitySquared(fluid, pOverRho2_);
         kernelCorrectionMatrices(s, fluid, fluid.particles.position(), correction_);
         addCorrectedSymmetricPressureAcceleration(s, fluid, pOverRho2_, correction_);
     }

@@ -34,12 +34,12 @@
 //       maxShift        0.1;     // largest shift a step, in particle spacings Δx (0: no cap)
 //       freeSurface     yes;     // the surface treatment (no: shift everywhere, internal flows)
 //   }
+#include "KernelCorrection.hpp" // Mat3, smallestEigenvalue
 #include "Log.hpp"
 #include "PairLoop.hpp"
 #include "Plugin.hpp"
 #include "ShiftingModel.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <cmath>
@@ -48,8 +48,6 @@
 
 namespace {
 using namespace spindrift;
-
-using Mat3 = Eigen::Matrix<Scalar, 3, 3>;
 
 // Σ (1 + R (W/W(Δx))ⁿ) M/(ρ_i + ρ_j) ∇W, and for the surface: −Σ V r ⊗ ∇W and Σ V ∇W.
 struct ShiftTerm {
@@ -193,18 +191,6 @@ public:
 private:
     static constexpr signed char splashZone = -1, besideZone = 2;
     static constexpr Index none = std::numeric_limits<Index>::max();
-
-    // the smallest eigenvalue of the symmetric part of B in the problem's dimensions
-    static Scalar smallestEigenvalue(const Mat3& B, int d) {
-        if (d == 2) {
-            const Scalar a = B(0, 0), c = B(1, 1), b = Scalar(0.5) * (B(0, 1) + B(1, 0));
-            return Scalar(0.5) * (a + c) - std::sqrt(Scalar(0.25) * (a - c) * (a - c) + b * b);
-        }
-        const Mat3 S = Scalar(0.5) * (B + B.transpose());
-        Eigen::SelfAdjointEigenSolver<Mat3> solver;
-        solver.computeDirect(S, Eigen::EigenvaluesOnly);
-        return solver.eigenvalues()[0];
-    }
 
     // a warning the first time the cap acts, then whenever the number of steps with clipping
     // reaches a power of ten
