@@ -53,6 +53,40 @@ inline Scalar smallestEigenvalue(const Mat3& M, int d) {
     return eigen.eigenvalues()[0];
 }
 
+// M⁻ᵀ g in the problem's d dimensions (the renormalised gradient of Bonet & Lok, above), where M
+// can be inverted (|det M| > 10⁻³ |M|^d); g as it is where it cannot (too few neighbours: a
+// particle alone, a thin jet).
+inline Vec3 renormalised(const Mat3& M, const Vec3& g, int d) {
+    Vec3 out = g;
+    if (d == 2) {
+        const Eigen::Matrix<Scalar, 2, 2> M2 = M.topLeftCorner<2, 2>();
+        if (std::abs(M2.determinant()) > Scalar(1e-3) * M2.squaredNorm())
+            out.head<2>() = M2.inverse().transpose() * g.head<2>();
+    } else if (std::abs(M.determinant()) > Scalar(1e-3) * std::pow(M.squaredNorm(), Scalar(1.5))) {
+        out = M.inverse().transpose() * g;
+    }
+    return out;
+}
+
+// The colour function's gradient ∇c_i = Σ_j V_j ∇_i W_ij and the moment matrix M_i in one sum
+// (a term adds each neighbour's V_j = m/ρ_j, or M_b/ρ_b of a boundary). The surface's outward
+// normal is the renormalised −∇c_i (Marrone et al. 2010, J. Comput. Phys. 229(10), 3652–3663,
+// doi:10.1016/j.jcp.2010.01.019): n_i = −M_i⁻¹ ∇c_i / |…| (M is symmetric for a radial kernel);
+// M's smallest eigenvalue (smallestEigenvalue) tells the surface from the bulk.
+struct MomentAndColour {
+    Mat3 moment = Mat3::Zero();
+    Vec3 colour = Vec3::Zero(); // ∇c_i
+    void add(Scalar V, const Pair& q) {
+        moment.noalias() -= V * q.r * q.gradW.transpose();
+        colour += V * q.gradW;
+    }
+    Vec3 outwardNormal(int d) const {
+        const Vec3 n = -renormalised(moment, colour, d);
+        const Scalar norm = n.norm();
+        return norm > 0 ? Vec3(n / norm) : Vec3::Zero();
+    }
+};
+
 // L_i of every particle of the fluid at positions x (in 2D the z row and column are zero).
 inline void kernelCorrectionMatrices(const Scene& s, const ParticleSystem& fluid, const std::vector<Vec3>& x,
                                      std::vector<Mat3>& L) {

@@ -11,15 +11,12 @@
 //
 //   densityDiffusion { type antuono; delta 0.1; }
 #include "DensityDiffusion.hpp"
+#include "KernelCorrection.hpp" // renormalised
 #include "PairLoop.hpp"
 #include "Plugin.hpp"
 
-#include <Eigen/LU>
-
 namespace {
 using namespace spindrift;
-
-using Mat3 = Eigen::Matrix<Scalar, 3, 3>;
 
 // Σ_j V_j (ρ_j − ρ_i) ∇W_ij and −Σ_j V_j r_ij ⊗ ∇W_ij.
 struct DensityGradientTerm {
@@ -72,17 +69,7 @@ public:
         gradient.resize(x.size());
         const int d = dimension_;
         forEachPairSum(s, fluid, x, DensityGradientTerm{rho, m}, [&](std::size_t i, Scalar, const auto& sum) {
-            // renormalise in the problem's dimensions; leave the gradient as it is where the
-            // moment matrix cannot be inverted (too few neighbours)
-            Vec3 g = sum.gradient;
-            if (d == 2) {
-                const Eigen::Matrix<Scalar, 2, 2> M = sum.moment.template topLeftCorner<2, 2>();
-                if (std::abs(M.determinant()) > Scalar(1e-3) * M.squaredNorm())
-                    g.template head<2>() = M.inverse().transpose() * g.template head<2>();
-            } else if (std::abs(sum.moment.determinant()) > Scalar(1e-3) * std::pow(sum.moment.squaredNorm(), Scalar(1.5))) {
-                g = sum.moment.inverse().transpose() * g;
-            }
-            gradient[i] = g;
+            gradient[i] = renormalised(sum.moment, sum.gradient, d);
         });
         const Scalar scale = delta_ * h * s.constants.soundSpeed * m;
         continuityDensityRate(s, fluid, rate, AntuonoTerm{rho, inverseDensity(fluid), gradient.data()}, scale);

@@ -34,13 +34,11 @@
 //       maxShift        0.1;     // largest shift a step, in particle spacings Δx (0: no cap)
 //       freeSurface     yes;     // the surface treatment (no: shift everywhere, internal flows)
 //   }
-#include "KernelCorrection.hpp" // Mat3, smallestEigenvalue
+#include "KernelCorrection.hpp" // MomentAndColour, smallestEigenvalue
 #include "Log.hpp"
 #include "PairLoop.hpp"
 #include "Plugin.hpp"
 #include "ShiftingModel.hpp"
-
-#include <Eigen/LU>
 
 #include <cmath>
 #include <limits>
@@ -53,8 +51,7 @@ using namespace spindrift;
 struct ShiftTerm {
     struct Sum {
         Vec3 shift = Vec3::Zero();
-        Mat3 moment = Mat3::Zero();
-        Vec3 colour = Vec3::Zero();
+        MomentAndColour surface;
     };
     static constexpr bool usesGradient = true, usesKernel = true;
     using Particle = Scalar; // ρ_i
@@ -66,11 +63,7 @@ struct ShiftTerm {
     Scalar weight(Scalar W) const { return 1 + R * std::pow(W * invWdx, Scalar(n)); }
     void add(Scalar rhoi, Scalar mass, Scalar rhoj, const Pair& q, Sum& sum) const {
         sum.shift += (weight(q.W) * mass / (rhoi + rhoj)) * q.gradW;
-        if (surface) {
-            const Scalar V = mass / rhoj;
-            sum.moment.noalias() -= V * q.r * q.gradW.transpose();
-            sum.colour += V * q.gradW;
-        }
+        if (surface) sum.surface.add(mass / rhoj, q);
     }
     void fluid(Scalar rhoi, const Pair& q, Sum& sum) const { add(rhoi, m, rho[q.j], q, sum); }
     void wall(Scalar rhoi, const WallPair& q, Sum& sum) const {
@@ -139,18 +132,8 @@ public:
         forEachPairSum(s, fluid, x, term, [&](std::size_t i, Scalar, const ShiftTerm::Sum& sum) {
             shift[i] = scale * sum.shift;
             if (!surface) return;
-            const Scalar lambda = smallestEigenvalue(sum.moment, d);
-            Vec3 n = -sum.colour;
-            const Mat3 B = sum.moment;
-            if (d == 2) {
-                const Eigen::Matrix<Scalar, 2, 2> B2 = B.topLeftCorner<2, 2>();
-                if (std::abs(B2.determinant()) > Scalar(1e-3) * B2.squaredNorm())
-                    n.head<2>() = -(B2.inverse() * sum.colour.head<2>());
-            } else if (std::abs(B.determinant()) > Scalar(1e-3) * std::pow(B.squaredNorm(), Scalar(1.5))) {
-                n = -(B.inverse() * sum.colour);
-            }
-            const Scalar norm = n.norm();
-            normal[i] = norm > 0 ? Vec3(n / norm) : Vec3::Zero();
+            const Scalar lambda = smallestEigenvalue(sum.surface.moment, d);
+            normal[i] = sum.surface.outwardNormal(d);
             zoneCode_[i] = lambda < Scalar(0.4) ? splashZone : lambda < Scalar(0.75) ? NearestSurfaceTerm::surfaceZone : 0;
         });
         bool anySurface = false;
