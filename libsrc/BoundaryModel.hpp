@@ -6,14 +6,16 @@
 // computeDensity), e.g. to extrapolate the boundaries' pressure; a pressure solver that changes
 // a fluid's pressure in its iterations has the core carry the change to the boundaries
 // (StepServices::updateBoundaryPressure, which calls updatePressure). correctAcceleration() runs
-// after the pressure model, when a fluid's accelerations are complete: a model that keeps fluid
-// particles out of its boundaries by contact (adami) changes the accelerations of those the step
-// would carry into them, and reports the force that change puts on each boundary
-// (addReactions, right after it, when something wants the reactions).
+// after the pressure model, when a fluid's accelerations are complete: there every boundary
+// model applies the collision of fluid particles that the step would carry into a boundary
+// (WallCollision.hpp, the model dictionary's `collision { }`; off unless named) and reports the
+// force that puts on each boundary (addReactions, right after it, when something wants the
+// reactions). A model reads its collision in its constructor and initialises it in initialise().
 #pragma once
 
 #include "Model.hpp"
 #include "Step.hpp"
+#include "WallCollision.hpp"
 
 namespace spindrift {
 
@@ -23,8 +25,13 @@ public:
     virtual void update(Scene&, const Step&) {}
     // The boundaries' own pressure from pressure p of 'fluid' (no-op for mirrored boundaries).
     virtual void updatePressure(Scene&, const ParticleSystem& /*fluid*/, const std::vector<Scalar>& /*p*/) {}
-    virtual void correctAcceleration(Scene&, ParticleSystem& /*fluid*/, const Step&) {}
-    virtual void addReactions(const Scene&, const ParticleSystem& /*fluid*/, const Step&, Reactions&) const {}
+    virtual void correctAcceleration(Scene& s, ParticleSystem& fluid, const Step& step) { collision_.apply(s, fluid, step.dt); }
+    virtual void addReactions(const Scene& s, const ParticleSystem& fluid, const Step& step, Reactions& r) const {
+        collision_.addReactions(s, fluid, step.dt, r);
+    }
+
+protected:
+    WallCollision collision_;
 };
 
 } // namespace spindrift

@@ -15,21 +15,17 @@
 // that change the fluid's pressure within a step carry it to the walls (updatePressure).
 // clampNegativePressure (yes): p_w ≥ 0, so a wall does not pull a free-surface flow onto it
 // where the hydrostatic term turns negative (a wall above the fluid).
-// Contact (direct forcing on velocities, Becker, Tessendorf & Teschner 2009, IEEE TVCG 15(3)
-// 493–503, doi:10.1109/TVCG.2008.107; Ihmsen, Akinci, Gissler & Teschner 2010 use it for PCISPH's
-// walls, VRIPHYS 2010, doi:10.2312/PE/vriphys/vriphys10/079-088): a particle whose position at the
-// end of the step would be nearer a boundary's face than contactDistance Δx (0.5 at rest; 0, the
-// default, switches it off) loses the velocity with which it approaches the boundary there (correctAcceleration; its
-// reaction on each boundary is reported as ForceKind::other). The wall pressure repels a particle
-// only through its density: a lone particle, or the tip of a thin sheet, has so few fluid
-// neighbours that it reached ρ0 only inside the wall. In the Colagrossi dam break the leading
-// particle of the surge slid along the floor 0.3-0.7Δx below its face, at ρ = ρ0 and p = 0, and
-// ran up the far wall 0.95Δx inside it (pcisph; every incompressible solver 0.95-1.13Δx, wcsph
-// 0.71Δx late in the run, issue 35). Off by default: at 0.25 it stops the corner particles of
-// a still column, whose share of wall density is a face's, from settling; iisph's bottom row read
-// 2.4 % above hydrostatic (IisphTest's column) and relaxedPbf's column ended above η.
+// Collision with the walls (WallCollision.hpp, `collision { }`, off unless named): `contactDistance
+// d` (0, the default: off) is `collision { distance d; }`, the approach stopped d Δx from a face.
+// The wall pressure repels a particle only through its density: a lone particle, or the tip of a
+// thin sheet, has so few fluid neighbours that it reached ρ0 only inside the wall (the Colagrossi
+// dam break's surge 0.3-0.7Δx below the floor's face, every incompressible solver 0.95-1.13Δx
+// inside the far wall, issue 35). Off by default: at 0.25 it stops the corner particles of a still
+// column, whose share of wall density is a face's, from settling; iisph's bottom row read 2.4 %
+// above hydrostatic (IisphTest's column) and relaxedPbf's column ended above η.
 //
 //   boundary { type adami; slip no; clampNegativePressure yes; contactDistance 0; }
+//   boundary { type adami; collision { distance 0; restitution 0.5; friction 0.1; } }
 #include "BoundaryModel.hpp"
 #include "Log.hpp"
 #include "PairLoop.hpp"
@@ -41,67 +37,28 @@
 namespace {
 using namespace spindrift;
 
-// M_b ∇W_ib of a boundary pair with the boundary particle where its own velocity takes it over
-// the step (the fluid particle at its position at the end of the step), and W_ib there.
-struct ContactKernel {
-    Vec3 gradient;
-    Scalar W;
-};
-inline ContactKernel contactKernel(const KernelTable& kt, const WallPair& q, Scalar dt) {
-    const Scalar M = q.mass();
-    if (!q.src.moving) return {M * q.gradW, M * q.W};
-    const Vec3 r = q.r - dt * q.src.v[q.j];
-    const KernelTable::Values k = kt.valuesSq(r.squaredNorm());
-    return {(M * k.gradFactor) * r, M * k.W};
-}
-
-// The boundaries as a fluid particle at its position at the end of the step sees them: their
-// share of its density, Σ_b M_b W_ib (a smooth function of the distance to a boundary's face:
-// ρ0/2 at the face of a flat wall), Σ_b M_b ∇W_ib, whose direction is the boundaries' normal
-// (smooth along a flat wall: a particle sliding along the wall's particles is not braked by their
-// bumps), and their mass-weighted velocity.
-struct ContactTerm {
-    struct Sum {
-        Scalar density = 0;
-        Vec3 gradient = Vec3::Zero(), momentum = Vec3::Zero();
-    };
-    static constexpr bool visitsFluid = false;
-    static constexpr bool usesGradient = true, usesKernel = true;
-    struct Particle {};
-    const KernelTable* kernel;
-    Scalar dt;
-    Particle particle(std::size_t) const { return {}; }
-    void wall(const Particle&, const WallPair& q, Sum& sum) const {
-        const ContactKernel k = contactKernel(*kernel, q, dt);
-        sum.density += k.W;
-        sum.gradient += k.gradient;
-        if (q.src.moving) sum.momentum += k.W * q.src.v[q.j];
-    }
-};
-
-// The pairs of the contact's reactions (addReactions reads only its kernel needs).
-struct ContactReactionTerm {
-    static constexpr bool usesGradient = true, usesKernel = true;
-    using Particle = std::size_t;
-    Particle particle(std::size_t i) const { return i; }
-};
-
 class Adami final : public BoundaryModel {
 public:
     explicit Adami(const ModelContext& c)
         : slip_(c.dict.getOrDefault<bool>("slip", false)),
-          clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)),
-          contact_(c.dict.getOrDefault<double>("contactDistance", 0.0)) {
-        if (!(contact_ >= 0 && contact_ <= 0.5))
+          clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)) {
+        collision_.read(c.dict);
+        const double contact = c.dict.getOrDefault<double>("contactDistance", 0.0);
+        if (!(contact >= 0 && contact <= 0.5))
             throw InputError(c.dict.locationOf("contactDistance"),
                              "contactDistance (from a wall's face, in particle spacings; 0.5 at rest) must be in [0, 0.5]",
                              "contactDistance");
+        if (contact > 0 && collision_.enabled())
+            throw InputError(c.dict.locationOf("contactDistance"),
+                             "contactDistance and collision { } say the same thing: give the distance in collision { distance ...; }",
+                             "contactDistance");
+        if (contact > 0) collision_.enableContact(contact);
     }
 
     void initialise(Scene& s) override {
         const Scalar m = s.constants.particleMass, latticeSum = s.constants.rho0 / m;
         const auto& kt = s.kernel;
-        contactDensity_ = contact_ > 0 ? flatWallShare(s, Scalar(contact_)) : Scalar(0);
+        collision_.initialise(s);
         for (ParticleSystem* wall : s.boundaries()) {
             ParticleSystem& w = *wall;
             auto& mass = w.particles.addScalar("wallMass", {true, false});
@@ -139,72 +96,7 @@ public:
         extrapolate(s, fluid, fluidPressure, false);
     }
 
-    // Contact (direct forcing, Becker, Tessendorf & Teschner 2009, on velocities): a fluid particle
-    // whose position at the end of the step, x + Δt (v + Δt a) (symplectic Euler), would be
-    // nearer a boundary's face than contactDistance Δx loses the part of its velocity v + Δt a
-    // that approaches the boundary along its normal n = −Σ_b M_b ∇W_ib/|…|, relative to the
-    // boundary's own velocity: Δa_i = −min(0, v_rel·n) n/Δt. It stops where it is and keeps its
-    // slide along the wall; nothing is pushed. "Nearer the face" is read from the boundaries'
-    // share of its density: at least ρ_c, their share at contactDistance from the face of a flat
-    // wall of the case's lattice (initialise). At rest a particle is 0.5Δx from the face; in a 90°
-    // corner its share is higher (0.53 ρ0 for the Wendland C2 at 4Δx in 2D), so it counts as
-    // touching, which changes nothing while it does not move into the corner.
-    void correctAcceleration(Scene& s, ParticleSystem& fluid, const Step& step) override {
-        const Scalar dt = step.dt;
-        const std::size_t n = fluid.size();
-        contacts_ = 0;
-        if (!(contactDensity_ > 0) || !(dt > 0) || s.boundaries().empty()) return;
-        const auto& x = fluid.particles.position();
-        const auto& v = fluid.particles.velocity();
-        auto& a = fluid.particles.acceleration();
-        predicted_.resize(n);
-        change_.assign(n, Vec3::Zero());
-        share_.resize(n);
-        forEachIndex(n, [&](std::size_t i) { predicted_[i] = x[i] + dt * (v[i] + dt * a[i]); });
-        const Scalar limit = contactDensity_, invDt = 1 / dt;
-        forEachPairSum(s, fluid, predicted_, ContactTerm{&s.kernel, dt}, [&](std::size_t i, const auto&, const ContactTerm::Sum& c) {
-            const Scalar length2 = c.gradient.squaredNorm();
-            if (c.density < limit || !(length2 > 0)) return;
-            const Vec3 normal = -c.gradient / std::sqrt(length2);
-            const Vec3 relative = v[i] + dt * a[i] - c.momentum / c.density;
-            const Scalar approach = relative.dot(normal);
-            if (approach < 0) {
-                change_[i] = -(approach * invDt) * normal;
-                a[i] += change_[i];
-                share_[i] = c.gradient / length2; // M_b ∇W_ib · this: boundary particle b's share (Σ = 1)
-            }
-        });
-        contacts_ = parallelAny(n, [&](std::size_t i) { return change_[i] != Vec3::Zero(); }) ? 1 : 0;
-    }
-
-    // The contact's Δa_i acts on the boundary particles b of i's normal in their shares
-    // M_b ∇W_ib·Σ_b M_b ∇W_ib/|Σ_b M_b ∇W_ib|² (summing to one): a_ib = share_b Δa_i, so the
-    // boundaries take −m Δa_i in all, the change of the fluid's momentum.
-    void addReactions(const Scene& s, const ParticleSystem& fluid, const Step& step, Reactions& r) const override {
-        if (!contacts_) return;
-        const Scalar dt = step.dt;
-        spindrift::addReactions(s, fluid, predicted_, ContactReactionTerm{}, [&](std::size_t i, std::size_t, const WallPair& q) {
-            if (change_[i] == Vec3::Zero()) return Vec3(Vec3::Zero());
-            return Vec3(contactKernel(s.kernel, q, dt).gradient.dot(share_[i]) * change_[i]);
-        }, ForceKind::other, r);
-    }
-
 private:
-    // The boundaries' share of the density of a particle 'distance' Δx from the face of a flat wall
-    // of particles of mass m on the case's lattice (layers covering the support): Σ_b m W_ib.
-    static Scalar flatWallShare(const Scene& s, Scalar distance) {
-        const double dx = s.physics.particleSpacing, h = s.constants.supportRadius;
-        const int reach = int(std::ceil(h / dx)) + 1, dim = s.physics.dimension;
-        double sum = 0;
-        for (int k = (dim == 3 ? -reach : 0); k <= (dim == 3 ? reach : 0); ++k)
-            for (int j = 0; j <= reach; ++j)
-                for (int i = -reach; i <= reach; ++i) {
-                    const Vec3 r(Scalar(i * dx), Scalar((distance + 0.5 + j) * dx), Scalar(k * dx));
-                    sum += double(s.kernel.W(r.norm()));
-                }
-        return Scalar(sum * s.constants.particleMass);
-    }
-
     // p_w, ρ_w (and v̂_w when 'velocities') of every boundary from the pressure p of a fluid.
     void extrapolate(Scene& s, const ParticleSystem& fluid, const std::vector<Scalar>& p, bool velocities) const {
         const auto& kt = s.kernel;
@@ -252,12 +144,6 @@ private:
     }
 
     bool slip_, clampNegative_;
-    double contact_;            // contactDistance: Δx from a boundary's face (0: no contact)
-    Scalar contactDensity_ = 0; // the boundaries' share of the density there
-    // the last correction: the predicted positions, each particle's Δa and its shares' vector,
-    // whether any particle was touched
-    std::vector<Vec3> predicted_, change_, share_;
-    int contacts_ = 0;
 };
 } // namespace
 

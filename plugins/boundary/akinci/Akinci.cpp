@@ -21,6 +21,8 @@
 // the adami boundary extrapolates the wall's pressure instead.)
 //
 //   boundary { type akinci; volume auto; }   // auto (default) | adaptive | lattice
+// and, as every boundary model, the collision of fluid particles with the walls (WallCollision.hpp):
+//   boundary { type akinci; collision { distance 0; restitution 0.5; friction 0.1; } }
 #include "BoundaryModel.hpp"
 #include "Log.hpp"
 #include "PairLoop.hpp"
@@ -34,9 +36,12 @@ using namespace spindrift;
 class Akinci final : public BoundaryModel {
 public:
     explicit Akinci(const ModelContext& c)
-        : volume_(c.dict.getWordOrDefault("volume", {"auto", "adaptive", "lattice"}, "auto")) {}
+        : volume_(c.dict.getWordOrDefault("volume", {"auto", "adaptive", "lattice"}, "auto")) {
+        collision_.read(c.dict);
+    }
 
     void initialise(Scene& s) override {
+        collision_.initialise(s);
         const auto& kt = s.kernel;
         const Scalar rho0 = s.constants.rho0, m = s.constants.particleMass;
         const Scalar latticeSum = rho0 / m; // Σ W over a full lattice neighbourhood (latticeParticleMass)

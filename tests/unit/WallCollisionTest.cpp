@@ -1,0 +1,101 @@
+// The collision of fluid particles with the walls (libsrc/WallCollision.hpp), which every boundary
+// model applies after the pressure model: a particle the step would carry across a wall's face
+// leaves with its normal velocity reversed and scaled by the restitution, its slide reduced by
+// Coulomb friction, and nothing happens to a particle that stays clear or moves away.
+#include "BoundaryModel.hpp"
+#include "TestSupport.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+using namespace spindrift;
+
+// The step moves the particle 0.2 dx, on the neighbour lists of its start: the wall's normal at
+// the end of the step is read from those pairs (a few at the support's edge are missed).
+constexpr double tolerance = 1e-3;
+constexpr Scalar dt = Scalar(0.002);
+
+struct Floor {
+    Scene s;
+    std::unique_ptr<Kernel> kernel;
+    std::unique_ptr<BoundaryModel> boundary;
+    // one fluid particle at height·dx above the face y = 0 of a floor of four lattice layers,
+    // symmetric about x = 0, with velocity v, placed so that the step takes it to x = 0 (between
+    // two wall particles, where the wall's normal is (0, 1): elsewhere the bumps of its particles
+    // tilt it by a few degrees this near the face); the boundary model from 'dict'
+    Floor(const std::string& dict, double height, const Vec3& v) {
+        s.physics = test::physicsFor(2, 0.01, 2.6);
+        kernel = test::createModel<Kernel>("type wendlandC2;", s.physics);
+        const double dx = s.physics.particleSpacing;
+        test::fillLattice(s, *kernel, Vec3::Zero(), Vec3(dx, dx, 0));
+        ParticleSystem& fluid = test::fluidOf(s);
+        fluid.particles.position()[0] = Vec3(-dt * v[0], Scalar(height * dx), 0);
+        fluid.particles.velocity()[0] = v;
+        fluid.particles.acceleration()[0] = Vec3::Zero();
+        std::vector<Vec3> wall;
+        for (int layer = 0; layer < 4; ++layer)
+            for (int i = -10; i < 10; ++i) wall.emplace_back(Scalar((i + 0.5) * dx), Scalar(-(layer + 0.5) * dx), 0);
+        test::addWallSystem(s, "floor", wall);
+        test::rebuild(s);
+        boundary = test::createModel<BoundaryModel>(dict, s.physics);
+        boundary->initialise(s);
+    }
+    // the velocity at the end of a step of dt: v + dt a after the collision
+    Vec3 velocityAfter() {
+        ParticleSystem& fluid = test::fluidOf(s);
+        boundary->correctAcceleration(s, fluid, test::stepOf(s, dt));
+        return fluid.particles.velocity()[0] + dt * fluid.particles.acceleration()[0];
+    }
+};
+
+
+TEST(WallCollision, ACrossingParticleIsReflectedWithRestitutionAndFriction) {
+    for (const char* model : {"adami", "akinci"}) {
+        // 0.1 dx over the face, falling 0.2 dx in the step at 1 m/s, sliding at 1 m/s
+        Floor f(std::string("type ") + model + "; collision { restitution 0.5; friction 0.2; }", 0.1, Vec3(1, -1, 0));
+        const Vec3 v = f.velocityAfter();
+        EXPECT_NEAR(v[1], 0.5, tolerance) << model; // −e u_n
+        // the friction impulse μ (1 + e) |u_n| = 0.3 of the slide
+        EXPECT_NEAR(v[0], 0.7, tolerance) << model;
+    }
+}
+
+TEST(WallCollision, FrictionStopsASlideButNeverReversesIt) {
+    Floor f("type adami; collision { restitution 0; friction 2; }", 0.1, Vec3(0.5, -1, 0));
+    const Vec3 v = f.velocityAfter();
+    EXPECT_NEAR(v[0], 0.0, tolerance);
+    EXPECT_NEAR(v[1], 0.0, tolerance);
+}
+
+TEST(WallCollision, ContactDistanceStopsTheApproachAndKeepsTheSlide) {
+    // adami's contactDistance 0.25: the particle would end 0.15 dx from the face
+    Floor f("type adami; contactDistance 0.25;", 0.25, Vec3(1, -0.5, 0));
+    const Vec3 v = f.velocityAfter();
+    EXPECT_NEAR(v[1], 0.0, tolerance);
+    EXPECT_NEAR(v[0], 1.0, tolerance);
+}
+
+TEST(WallCollision, AParticleThatStaysClearOrLeavesIsUntouched) {
+    // ends 0.1 dx above the face: not a crossing with distance 0
+    Floor clear("type adami; collision { restitution 1; friction 1; }", 0.2, Vec3(1, -0.5, 0));
+    const Vec3 v1 = clear.velocityAfter();
+    EXPECT_EQ(v1, Vec3(1, -0.5, 0));
+    // already at the face but moving away
+    Floor leaving("type adami; collision { restitution 1; friction 1; }", 0.1, Vec3(1, 0.5, 0));
+    const Vec3 v2 = leaving.velocityAfter();
+    EXPECT_EQ(v2, Vec3(1, 0.5, 0));
+    // no collision named: nothing is done
+    Floor off("type adami;", 0.6, Vec3(1, -1, 0));
+    const Vec3 v3 = off.velocityAfter();
+    EXPECT_EQ(v3, Vec3(1, -1, 0));
+}
+
+TEST(WallCollision, BadOptionsAreRefusedWithTheirKeyword) {
+    const auto physics = test::physicsFor(2);
+    for (const char* bad : {"collision { restitution 1.5; }", "collision { friction -1; }", "collision { distance 0.7; }",
+                            "collision { restitution 0.5; spin 1; }", "contactDistance 0.2; collision { }"}) {
+        EXPECT_THROW(test::createModel<BoundaryModel>(std::string("type adami; ") + bad, physics), InputError) << bad;
+    }
+}
+
+} // namespace
