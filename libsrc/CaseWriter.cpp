@@ -2,6 +2,7 @@
 //
 // File layout (see CaseWriter.hpp):
 //   <case>/<time>/fluid.vtp, <case>/<time>/<system>.vtp (each other system written that time),
+//   <case>/<time>/<block>.vtp (each block of a function object),
 //   <case>/<caseName>.pvd listing every complete time with relative paths, a part per system.
 // Arrays in a .vtp: points = positions; point data "id" (vtkTypeUInt32Array, i.e. VTK's
 // "UInt32", the type of Index), then the selected scalar (1 component) and vector
@@ -236,12 +237,16 @@ void writeVtp(const fs::path& file, const ParticleSet& set,
         poly->GetFieldData()->AddArray(mass);
     }
 
+    writePolyData(file, *poly, compressed);
+}
+
+void writePolyData(const fs::path& file, vtkPolyData& data, bool compressed) {
     vtkNew<vtkXMLPolyDataWriter> writer;
     vtkNew<ErrorCollector> errors;
     writer->AddObserver(vtkCommand::ErrorEvent, errors);
     writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
     writer->SetFileName(file.string().c_str());
-    writer->SetInputData(poly);
+    writer->SetInputData(&data);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff(); // raw binary
     if (compressed) writer->SetCompressorTypeToLZ4();
@@ -475,7 +480,8 @@ CaseWriter::RunStart CaseWriter::beginRun(double from, const std::string& contin
 
 void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<SystemFile>& others,
                        const std::vector<std::string>& fieldNames,
-                       const std::vector<std::pair<std::string, std::string>>& extraFiles) {
+                       const std::vector<std::pair<std::string, std::string>>& extraFiles,
+                       const std::vector<Block>& blocks) {
     const std::string name = timeName(time, precision_);
     // two times of one name: the second would replace the first's results (the schedule is
     // checked before the run; this catches what it cannot foresee, e.g. writeControl timeStep
@@ -515,6 +521,12 @@ void CaseWriter::write(double time, const ParticleSet& fluid, const std::vector<
         for (const SystemFile& o : others) {
             writeVtp(tmpDir / (o.set->name() + ".vtp"), *o.set, fieldNames, o.restart, !o.restart);
             entry.others.push_back(o.set->name());
+        }
+        for (const Block& b : blocks) {
+            if (b.name == "fluid" || std::count(entry.others.begin(), entry.others.end(), b.name))
+                throw std::runtime_error("two blocks of the time are named '" + b.name + "'");
+            b.write(tmpDir / (b.name + ".vtp"));
+            entry.others.push_back(b.name);
         }
         std::sort(entry.others.begin(), entry.others.end());
         for (const auto& [relative, content] : extraFiles) {

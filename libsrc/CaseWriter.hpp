@@ -1,7 +1,7 @@
 // Spindrift — output of a case: one directory per written time holding a .vtp file per
 // particle system (fluid.vtp and <system>.vtp for every wall, body and passive system: each time
 // directory is whole by itself), plus <caseName>.pvd at the case root listing the times of this run, one block
-// (part) per system.
+// (part) per system, and one per block a function object adds (e.g. freeSurface's surface.vtp).
 //
 // Files are VTK XML PolyData, binary appended, written with the VTK library; points are the
 // particle positions (one vertex cell per particle), point-data arrays are the set's fields.
@@ -28,10 +28,13 @@
 #include "ParticleSet.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
+
+class vtkPolyData;
 
 namespace spindrift {
 
@@ -74,9 +77,16 @@ public:
         const ParticleSet* set;
         bool restart;
     };
+    // A block of a written time that is not a particle system (a function object's, e.g. a
+    // surface mesh): 'write' writes it, as VTK XML PolyData, to the file it is given,
+    // <time>/<name>.vtp; the .pvd lists it beside the systems.
+    struct Block {
+        std::string name;
+        std::function<void(const std::filesystem::path& file)> write;
+    };
     // Writes <caseDir>/<timeName(time)>/fluid.vtp and <name>.vtp for each of 'others' (named by
-    // their sets; every other system of the run, so that each time directory is whole), then
-    // the .pvd. 'fieldNames': arrays to write besides 'id' (empty = every field flagged
+    // their sets; every other system of the run, so that each time directory is whole) and of
+    // 'blocks', then the .pvd. 'fieldNames': arrays to write besides 'id' (empty = every field flagged
     // output); the fluid's fields flagged restart are always written, the others' as
     // SystemFile says; scratch and undefined fields never.
     // 'extraFiles': further files written into the time directory before it is renamed
@@ -84,7 +94,8 @@ public:
     // Whatever had the time's name before (an earlier write of it, a dangling link) is replaced.
     void write(double time, const ParticleSet& fluid, const std::vector<SystemFile>& others,
                const std::vector<std::string>& fieldNames = {},
-               const std::vector<std::pair<std::string, std::string>>& extraFiles = {});
+               const std::vector<std::pair<std::string, std::string>>& extraFiles = {},
+               const std::vector<Block>& blocks = {});
 
     // Complete time directories present in the case (a time's name, holding fluid.vtp),
     // sorted by time.
@@ -124,6 +135,11 @@ private:
 // ParaView and readVtp).
 void writeVtp(const std::filesystem::path& file, const ParticleSet& set,
               const std::vector<std::string>& fieldNames = {}, bool restartFields = true, bool compressed = false);
+
+// Writes 'data' as a .vtp file (binary appended, LZ4-compressed when 'compressed'); a failure
+// (a full disk, VTK's own errors) is a std::runtime_error naming the file. writeVtp's writer, for
+// the blocks of function objects too.
+void writePolyData(const std::filesystem::path& file, vtkPolyData& data, bool compressed = false);
 
 // Reads a .vtp written by writeVtp back into a ParticleSet: positions, id, and every
 // point-data array as a scalar (1 component) or vector (3 components) field.

@@ -1,11 +1,13 @@
 // Spindrift — function objects (plugins/functionObjects), OpenFOAM-style: configured in
 // controlDict `functions { name { type probes; ... } }`, executed after every step (or every
 // `executeInterval` steps), writing tabular output to
-// postProcessing/<name>/<startTime>/<name>.dat through PostProcessingFile.
+// postProcessing/<name>/<startTime>/<name>.dat through PostProcessingFile, or a block of their
+// own in every written time directory (<block>.vtp, listed in the .pvd: freeSurface's mesh).
 #pragma once
 
 #include "ModelContext.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -23,6 +25,12 @@ public:
     // Called after each step; 'writeTime' is true when the solver writes a time directory.
     virtual void execute(const Scene& system, bool writeTime) = 0;
     virtual void end(const Scene&) {}
+    // A block of its own in every written time: its name (the file <name>.vtp beside the systems'
+    // files, a part of the .pvd), empty for none. Asked once after set-up.
+    virtual std::string blockName() const { return {}; }
+    // Writes the block of the scene's state to 'file' (VTK XML PolyData: writePolyData) while the
+    // solver writes a time directory, before execute() of that step.
+    virtual void writeBlock(const Scene&, const std::filesystem::path& file) { (void)file; }
 };
 
 // A column of a postProcessing table: its name and its unit as the header shows it ("Pa", "m/s",

@@ -134,9 +134,22 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     integrator_->initialise(scene_);
     for (auto& p : passive_) p->initialise(scene_); // (adds its systems: after every fluid field exists)
     if (functions) {
-        for (const auto& name : functions->keywords())
+        std::vector<std::string> blocks; // the names a time directory's files have: fluid, the systems, the blocks
+        blocks.push_back("fluid");
+        for (const auto& p : scene_.systems)
+            if (p.get() != fluid_) blocks.push_back(p->name());
+        for (const auto& name : functions->keywords()) {
             functions_.push_back(registry.create<FunctionObject>(functions->subDict(name), physics, constants, nullptr,
                                                                  case_.dir, name));
+            const std::string block = functions_.back()->blockName();
+            if (block.empty()) continue;
+            if (std::find(blocks.begin(), blocks.end(), block) != blocks.end())
+                throw InputError(functions->subDict(name).where(),
+                                 "function object '" + name + "' writes the block " + block + ".vtp, the name of a " +
+                                     (block == "fluid" || scene_.find(block) ? "particle system" : "block of another function object") +
+                                     ": rename the entry");
+            blocks.push_back(block);
+        }
     }
 
     checkWriteFields();

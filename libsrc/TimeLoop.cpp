@@ -306,7 +306,12 @@ void Simulation::write() {
     std::vector<std::pair<std::string, std::string>> extra{{"uniform/time", timeFile()},
                                                            {"uniform/particles", particlesFile()}};
     if (const std::string bodies = bodiesFile(); !bodies.empty()) extra.emplace_back("uniform/bodies", bodies);
-    writer_->write(scene_.time, fluid_->particles, others, writeFields_, extra);
+    // the function objects' blocks (freeSurface's surface mesh), of the state written
+    std::vector<CaseWriter::Block> blocks;
+    for (auto& f : functions_)
+        if (std::string name = f->blockName(); !name.empty())
+            blocks.push_back({std::move(name), [this, &f](const std::filesystem::path& file) { f->writeBlock(scene_, file); }});
+    writer_->write(scene_.time, fluid_->particles, others, writeFields_, extra, blocks);
 }
 
 void Simulation::takeCaseTimes() {
