@@ -17,6 +17,9 @@
 // is in [0, 0.5]. The boundaries take −m Δu/Δt in all (ForceKind::other), shared over the
 // boundary particles of i's normal in proportion to M_b ∇W_ib · Σ_b M_b ∇W_ib / |Σ_b M_b ∇W_ib|².
 //
+// On by default with distance 0, e = 0, μ = 0: no particle centre is carried past a face (issue 35:
+// the incompressible solvers' surge ran 0.5-1.1Δx into the Colagrossi tank's walls, wcsph's 0.8Δx;
+// with it 0.01-0.04Δx); `collision no;` switches it off.
 //   boundary { type adami; collision { distance 0; restitution 0; friction 0; } }
 //   (adami's `contactDistance d;` is the same as `collision { distance d; }`)
 #pragma once
@@ -32,11 +35,16 @@ namespace spindrift {
 
 class WallCollision {
 public:
-    // From a boundary model's dictionary: its `collision { }` sub-dictionary if there is one.
+    // From a boundary model's dictionary: its `collision { }` sub-dictionary (the defaults when
+    // there is none), or `collision no;` (off).
     void read(const Dictionary& boundary) {
+        if (boundary.found("collision") && !boundary.isDict("collision")) {
+            enabled_ = boundary.get<bool>("collision");
+            return;
+        }
+        enabled_ = true;
         const Dictionary* c = boundary.findDict("collision");
         if (!c) return;
-        enabled_ = true;
         distance_ = c->getOrDefault<double>("distance", 0.0);
         restitution_ = c->getOrDefault<double>("restitution", 0.0);
         friction_ = c->getOrDefault<double>("friction", 0.0);
@@ -51,7 +59,7 @@ public:
     }
     // A contact at 'distance' Δx that stops the approach (e = 0, μ = 0): adami's contactDistance.
     void enableContact(double distance) {
-        enabled_ = distance > 0;
+        enabled_ = true;
         distance_ = distance;
     }
     bool enabled() const { return enabled_; }

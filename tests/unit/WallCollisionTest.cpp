@@ -1,7 +1,8 @@
 // The collision of fluid particles with the walls (libsrc/WallCollision.hpp), which every boundary
 // model applies after the pressure model: a particle the step would carry across a wall's face
 // leaves with its normal velocity reversed and scaled by the restitution, its slide reduced by
-// Coulomb friction, and nothing happens to a particle that stays clear or moves away.
+// Coulomb friction, and nothing happens to a particle that stays clear or moves away. On by
+// default (restitution 0: the crossing is stopped); `collision no;` switches it off.
 #include "BoundaryModel.hpp"
 #include "TestSupport.hpp"
 
@@ -84,10 +85,19 @@ TEST(WallCollision, AParticleThatStaysClearOrLeavesIsUntouched) {
     Floor leaving("type adami; collision { restitution 1; friction 1; }", 0.1, Vec3(1, 0.5, 0));
     const Vec3 v2 = leaving.velocityAfter();
     EXPECT_EQ(v2, Vec3(1, 0.5, 0));
-    // no collision named: nothing is done
-    Floor off("type adami;", 0.6, Vec3(1, -1, 0));
+    // collision switched off: nothing is done
+    Floor off("type adami; collision no;", 0.1, Vec3(1, -1, 0));
     const Vec3 v3 = off.velocityAfter();
     EXPECT_EQ(v3, Vec3(1, -1, 0));
+}
+
+TEST(WallCollision, ByDefaultEveryBoundaryModelStopsACrossing) {
+    for (const char* model : {"type adami;", "type akinci;", "type adami; collision yes;"}) {
+        Floor f(model, 0.1, Vec3(1, -1, 0));
+        const Vec3 v = f.velocityAfter();
+        EXPECT_NEAR(v[1], 0.0, tolerance) << model;
+        EXPECT_NEAR(v[0], 1.0, tolerance) << model;
+    }
 }
 
 TEST(WallCollision, BadOptionsAreRefusedWithTheirKeyword) {

@@ -15,14 +15,14 @@
 // that change the fluid's pressure within a step carry it to the walls (updatePressure).
 // clampNegativePressure (yes): p_w ≥ 0, so a wall does not pull a free-surface flow onto it
 // where the hydrostatic term turns negative (a wall above the fluid).
-// Collision with the walls (WallCollision.hpp, `collision { }`, off unless named): `contactDistance
-// d` (0, the default: off) is `collision { distance d; }`, the approach stopped d Δx from a face.
-// The wall pressure repels a particle only through its density: a lone particle, or the tip of a
+// Collision with the walls (WallCollision.hpp, `collision { }`, on by default at the face): the
+// wall pressure repels a particle only through its density, and a lone particle, or the tip of a
 // thin sheet, has so few fluid neighbours that it reached ρ0 only inside the wall (the Colagrossi
-// dam break's surge 0.3-0.7Δx below the floor's face, every incompressible solver 0.95-1.13Δx
-// inside the far wall, issue 35). Off by default: at 0.25 it stops the corner particles of a still
-// column, whose share of wall density is a face's, from settling; iisph's bottom row read 2.4 %
-// above hydrostatic (IisphTest's column) and relaxedPbf's column ended above η.
+// dam break's surge 0.3-0.7Δx below the floor's face, every incompressible solver 0.5-1.1Δx inside
+// the far wall, issue 35). `contactDistance d` (0 < d ≤ 0.5) is `collision { distance d; }`,
+// the approach stopped d Δx from a face: at 0.25 it stopped the corner particles of a still
+// column, whose share of wall density is above a flat face's, from settling (iisph's bottom row
+// 2.4 % above hydrostatic); at the face (the default) the still tank is unchanged bit for bit.
 //
 //   boundary { type adami; slip no; clampNegativePressure yes; contactDistance 0; }
 //   boundary { type adami; collision { distance 0; restitution 0.5; friction 0.1; } }
@@ -48,7 +48,7 @@ public:
             throw InputError(c.dict.locationOf("contactDistance"),
                              "contactDistance (from a wall's face, in particle spacings; 0.5 at rest) must be in [0, 0.5]",
                              "contactDistance");
-        if (contact > 0 && collision_.enabled())
+        if (contact > 0 && c.dict.found("collision"))
             throw InputError(c.dict.locationOf("contactDistance"),
                              "contactDistance and collision { } say the same thing: give the distance in collision { distance ...; }",
                              "contactDistance");
