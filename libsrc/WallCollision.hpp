@@ -1,5 +1,5 @@
 // Spindrift — the collision of fluid particles with the boundaries (walls and bodies), written once
-// for every boundary model (BoundaryModel::collision): a fluid particle whose position at the end of
+// for every boundary model (BoundaryModel's collision_): a fluid particle whose position at the end of
 // the step, x* = x + Δt (v + Δt a) (symplectic Euler's), would be nearer a boundary's face than
 // `distance` Δx (0: would cross the face) and moves towards it, relative to the boundary's own
 // velocity v_w, has that velocity u = v + Δt a − v_w changed as by a collision with restitution e
