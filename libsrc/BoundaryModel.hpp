@@ -9,9 +9,9 @@
 // after the pressure model, when a fluid's accelerations are complete: there every boundary
 // model applies the collision of fluid particles that the step would carry into a boundary
 // (WallCollision.hpp, the model dictionary's `collision { }`; on at the faces by default,
-// `collision no;` off) and reports the
-// force that puts on each boundary (addReactions, right after it, when something wants the
-// reactions). A model reads its collision in its constructor and initialises it in initialise().
+// `collision no;` off) and reports the force that puts on each boundary (addReactions, right
+// after it, when something wants the reactions). A model reads its collision in its constructor
+// and initialises it in initialise().
 #pragma once
 
 #include "Model.hpp"
