@@ -15,7 +15,7 @@ include(GNUInstallDirs)
 
 function(spindrift_add_plugin kind)
   # the kinds of ModelRegistry::kinds() (ModelRegistryTest checks the two lists agree)
-  set(kinds kernel pressure viscosity integrator boundary force densityDiffusion shifting passive functionObject)
+  set(kinds kernel pressure viscosity integrator boundary force surfaceTension densityDiffusion shifting passive functionObject)
   if(NOT kind IN_LIST kinds)
     string(REPLACE ";" " " kinds "${kinds}")
     message(FATAL_ERROR "spindrift_add_plugin: unknown kind '${kind}' (kinds: ${kinds})")

@@ -13,7 +13,7 @@ public:
     virtual ~Model() = default;
     // Called once every system exists and Scene::constants are resolved, before the first
     // evaluation, in the order: boundary, pressure, density diffusion, shifting, viscosity,
-    // forces, integrator. A model registers the fields it needs here.
+    // forces, surface tension, integrator. A model registers the fields it needs here.
     virtual void initialise(Scene&) {}
     // The largest step Δt [s] the model is stable with at the current state (+∞: no limit of its
     // own). The core takes the smallest over every model, the CFL condition on the sound and

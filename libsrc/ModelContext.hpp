@@ -47,6 +47,7 @@ class FunctionObject;
 class DensityDiffusion;
 class ShiftingModel;
 class PassiveModel;
+class SurfaceTensionModel;
 template <> struct KindName<Kernel> { static constexpr const char* value = "kernel"; };
 template <> struct KindName<PressureModel> { static constexpr const char* value = "pressure"; };
 template <> struct KindName<ViscosityModel> { static constexpr const char* value = "viscosity"; };
@@ -57,5 +58,6 @@ template <> struct KindName<FunctionObject> { static constexpr const char* value
 template <> struct KindName<DensityDiffusion> { static constexpr const char* value = "densityDiffusion"; };
 template <> struct KindName<ShiftingModel> { static constexpr const char* value = "shifting"; };
 template <> struct KindName<PassiveModel> { static constexpr const char* value = "passive"; };
+template <> struct KindName<SurfaceTensionModel> { static constexpr const char* value = "surfaceTension"; };
 
 } // namespace spindrift

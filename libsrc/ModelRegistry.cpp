@@ -27,8 +27,9 @@ std::string pluginFileName(const std::string& kind, const std::string& name) {
 }
 
 const std::vector<std::string>& ModelRegistry::kinds() {
-    static const std::vector<std::string> k{"kernel",   "pressure",         "viscosity", "integrator", "boundary",
-                                            "force",    "densityDiffusion", "shifting",  "passive",     "functionObject"};
+    static const std::vector<std::string> k{"kernel",   "pressure", "viscosity",      "integrator",
+                                            "boundary", "force",    "surfaceTension", "densityDiffusion",
+                                            "shifting", "passive",  "functionObject"};
     return k;
 }
 

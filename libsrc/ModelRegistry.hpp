@@ -21,6 +21,7 @@
 #include "PassiveModel.hpp"
 #include "PressureModel.hpp"
 #include "ShiftingModel.hpp"
+#include "SurfaceTensionModel.hpp"
 #include "ViscosityModel.hpp"
 
 #include <filesystem>
@@ -36,7 +37,8 @@ public:
     // The process-wide registry (libraries it opened stay loaded until exit).
     static ModelRegistry& instance();
 
-    // kernel pressure viscosity integrator boundary force densityDiffusion shifting passive functionObject
+    // kernel pressure viscosity integrator boundary force surfaceTension densityDiffusion shifting passive
+    // functionObject
     static const std::vector<std::string>& kinds();
 
     const std::vector<std::filesystem::path>& searchPath() const { return searchPath_; }

@@ -72,6 +72,8 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
             forces_.push_back(registry.create<ExtraForce>(forces->subDict(name), physics, constants, solutionFor(name),
                                                           case_.dir, name));
     }
+    if (const Dictionary* d = schemes.findDict("surfaceTension"))
+        surfaceTension_ = registry.create<SurfaceTensionModel>(*d, physics, constants, solutionFor("surfaceTension"));
     if (const Dictionary* d = schemes.findDict("densityDiffusion"))
         densityDiffusion_ = registry.create<DensityDiffusion>(*d, physics, constants, solutionFor("densityDiffusion"));
     if (const Dictionary* d = schemes.findDict("shifting"))
@@ -131,6 +133,7 @@ Simulation::Simulation(const fs::path& caseDir, bool forceLargeCase)
     }
     if (viscosity_) viscosity_->initialise(scene_);
     for (auto& f : forces_) f->initialise(scene_);
+    if (surfaceTension_) surfaceTension_->initialise(scene_);
     integrator_->initialise(scene_);
     for (auto& p : passive_) p->initialise(scene_); // (adds its systems: after every fluid field exists)
     if (functions) {
@@ -558,6 +561,8 @@ void Simulation::checkIntegratorApplies(const Dictionary& schemes) const {
     if (const Dictionary* forces = schemes.findDict("forces"))
         for (std::size_t k = 0; k < forces_.size(); ++k)
             check("force", forces->subDict(forces->keywords()[k]).get<std::string>("type"), forces_[k]->result());
+    if (surfaceTension_)
+        check("surfaceTension", schemes.subDict("surfaceTension").get<std::string>("type"), surfaceTension_->result());
 }
 
 void Simulation::readRunControls(const Dictionary& control) {
@@ -943,6 +948,7 @@ std::string Simulation::schemesSummary() const {
     if (shifting_) s << ", shifting " << type("shifting");
     if (const Dictionary* forces = case_.sphSchemes.findDict("forces"))
         for (const auto& name : forces->keywords()) s << ", force " << forces->subDict(name).get<std::string>("type");
+    if (surfaceTension_) s << ", surfaceTension " << type("surfaceTension");
     if (const Dictionary* passive = case_.sphSchemes.findDict("passive"))
         for (const auto& name : passive->keywords())
             s << ", passive " << name << " (" << passive->subDict(name).get<std::string>("type") << ")";

@@ -161,6 +161,7 @@ private:
     std::unique_ptr<PressureModel> pressure_;
     std::unique_ptr<ViscosityModel> viscosity_;
     std::vector<std::unique_ptr<ExtraForce>> forces_;
+    std::unique_ptr<SurfaceTensionModel> surfaceTension_;
     std::vector<std::unique_ptr<FunctionObject>> functions_;
     std::unique_ptr<PostProcessingFile> solverPerformance_; // iterative pressure solvers only
     std::unique_ptr<Integrator> integrator_;

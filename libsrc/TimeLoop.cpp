@@ -135,6 +135,8 @@ void Simulation::evaluate(double time, Scalar dt) {
             force->addAcceleration(s, *f, step);
             if (wantReactions) force->addReactions(s, *f, step, reactions);
         }
+        if (surfaceTension_) surfaceTension_->addAcceleration(s, *f, step);
+        if (surfaceTension_ && wantReactions) surfaceTension_->addReactions(s, *f, step, reactions);
         pressure_->addPressureAcceleration(s, *f, step);
         if (wantReactions) pressure_->addReactions(s, *f, step, reactions);
         if (boundaryModel_) boundaryModel_->correctAcceleration(s, *f, step);
@@ -203,6 +205,7 @@ std::vector<const Model*> Simulation::models() const {
                            static_cast<const Model*>(densityDiffusion_.get()), static_cast<const Model*>(shifting_.get())})
         if (m) out.push_back(m);
     for (const auto& f : forces_) out.push_back(f.get());
+    if (surfaceTension_) out.push_back(surfaceTension_.get());
     for (const auto& p : passive_) out.push_back(p.get());
     return out;
 }

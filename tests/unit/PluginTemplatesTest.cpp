@@ -28,6 +28,8 @@ TEST(PluginTemplates, EveryKindHasATemplateThatLoadsAndMakesItsModel) {
     EXPECT_NE(test::createModel<FunctionObject>("type " + load("functionObject") + ";", physics), nullptr);
     EXPECT_NE(test::createModel<DensityDiffusion>("type " + load("densityDiffusion") + ";", physics), nullptr);
     EXPECT_NE(test::createModel<ShiftingModel>("type " + load("shifting") + ";", physics), nullptr);
+    EXPECT_NE(test::createModel<SurfaceTensionModel>("type " + load("surfaceTension") + "; sigma 0.07;", physics),
+              nullptr);
     EXPECT_NE(test::createModel<PassiveModel>("type " + load("passive") + "; min (0 0 0); max (1 1 0); spacing 0.1;", physics),
               nullptr);
     EXPECT_EQ(ModelRegistry::instance().loadedLibraries().size(), ModelRegistry::kinds().size());

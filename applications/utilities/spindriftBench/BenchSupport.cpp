@@ -210,7 +210,7 @@ std::string kindOfTypeKey(const std::string& key) {
     if (last != "type" || parent.empty()) return "";
     const std::string first = parent.substr(0, parent.find('.'));
     if (first == "kernel" || first == "pressure" || first == "viscosity" || first == "integrator" ||
-        first == "boundary" || first == "densityDiffusion" || first == "shifting")
+        first == "boundary" || first == "densityDiffusion" || first == "shifting" || first == "surfaceTension")
         return first;
     if (first == "forces") return "force";
     if (first == "functions") return "functionObject";
