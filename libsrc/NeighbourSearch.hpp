@@ -470,6 +470,9 @@ public:
                const Periodicity& periodic = {});
     const Periodicity& periodicity() const { return periodic_; }
     Scalar radius() const { return radius_; }
+    // The box the particles are expected to stay in (setup)
+    const Vec3& domainMin() const { return domainMin_; }
+    const Vec3& domainMax() const { return domainMax_; }
 
     // Registers the next system (its number is the count before): the search reads its
     // positions through the pointer at every build; a fixed system's grid is built once.

@@ -19,6 +19,11 @@ namespace spindrift {
 class PassiveModel : public Model {
 public:
     virtual void afterStep(Scene& scene, const Step& step) = 0;
+    // A state of its own beyond its particles (e.g. the next id a new particle gets), as the
+    // entries of a dictionary: written in every time directory (uniform/passive, a sub-dictionary
+    // per model) and given back on a restart from it, after the particles are. "": none.
+    virtual std::string stateText() const { return {}; }
+    virtual void readState(const Dictionary&) {}
 };
 
 } // namespace spindrift

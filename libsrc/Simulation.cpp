@@ -882,6 +882,7 @@ bool Simulation::restartFromLatest() {
     deltaTHoldSteps_ = timeDict->getOrDefault<int>("blowUpHoldSteps", 0);
     if (!(deltaTCap_ > 0)) deltaTCap_ = std::numeric_limits<double>::infinity();
     readBodies(case_.dir / name);
+    readPassiveStates(case_.dir / name);
     log::info("Restarting from time " + name + " (step " + std::to_string(scene_.step) + ", " +
               std::to_string(saved->size()) + " particles)");
     return true;
@@ -906,6 +907,29 @@ void Simulation::restorePassiveSystems(const fs::path& timeDir) {
         set.position() = saved.position();
         scene_.search.positionsChanged(p->index);
     }
+}
+
+std::string Simulation::passiveStateFile() const {
+    const Dictionary* passive = case_.sphSchemes.findDict("passive");
+    if (!passive) return {};
+    const auto names = passive->keywords();
+    std::ostringstream entries;
+    for (std::size_t k = 0; k < passive_.size(); ++k)
+        if (const std::string state = passive_[k]->stateText(); !state.empty())
+            entries << names[k] << "\n{\n" << state << "}\n";
+    if (entries.str().empty()) return {};
+    return "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
+           "    object      passive;\n}\n\n" + entries.str();
+}
+
+void Simulation::readPassiveStates(const fs::path& timeDir) {
+    const fs::path file = timeDir / "uniform/passive";
+    const Dictionary* passive = case_.sphSchemes.findDict("passive");
+    if (!passive || !fs::exists(file)) return; // (a model then rebuilds its state from its particles)
+    const Dictionary d = Dictionary::fromFile(file);
+    const auto names = passive->keywords();
+    for (std::size_t k = 0; k < passive_.size(); ++k)
+        if (const Dictionary* state = d.findDict(names[k])) passive_[k]->readState(*state);
 }
 
 std::string Simulation::bodiesFile() const {

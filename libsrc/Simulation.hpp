@@ -140,6 +140,10 @@ private:
     std::string timeFile() const;
     // uniform/bodies: every body's state in full precision (empty without bodies), and read back.
     std::string bodiesFile() const;
+    // uniform/passive: the passive models' states of their own (empty when none has one), and
+    // read back.
+    std::string passiveStateFile() const;
+    void readPassiveStates(const std::filesystem::path& timeDir);
     void readBodies(const std::filesystem::path& timeDir);
     // A restart's passive systems: their particles and restart fields from <name>.vtp of the time.
     void restorePassiveSystems(const std::filesystem::path& timeDir);

@@ -309,6 +309,7 @@ void Simulation::write() {
     std::vector<std::pair<std::string, std::string>> extra{{"uniform/time", timeFile()},
                                                            {"uniform/particles", particlesFile()}};
     if (const std::string bodies = bodiesFile(); !bodies.empty()) extra.emplace_back("uniform/bodies", bodies);
+    if (const std::string passive = passiveStateFile(); !passive.empty()) extra.emplace_back("uniform/passive", passive);
     // the function objects' blocks (freeSurface's surface mesh), of the state written
     std::vector<CaseWriter::Block> blocks;
     for (auto& f : functions_)

@@ -9,13 +9,18 @@ Opens the .pvd with ParaView's PVD reader, checks that it reports exactly
 data and checks that the fluid data set (part 0 of the collection; a multiblock data set when
 the case also has walls, part 1) has more than zero points and every named point-data array.
 With --blocks N, every time step must hold exactly N data sets with points: one block per
-particle system (the fluid, and each wall system, fixed or moving). With --changing BLOCK:ARRAY,
+particle system (the fluid, and each wall system, fixed or moving); --may-be-empty NAME (any
+number of times) counts the block NAME even when it has no points (a passive system whose
+particles are generated later, e.g. diffuse particles). With --changing BLOCK:ARRAY,
 the block of that name (a wall system) has the point array at every time step, and its values
 at the last time step are not those of the first (a wall's own pressure, following the flow).
 Prints one summary line and exits 0; on any failure prints the reasons to stderr and exits 1.
 """
 
 import sys
+
+
+may_be_empty = []  # --may-be-empty NAME: blocks counted even without points (a passive system not yet seeded)
 
 
 def fail(messages):
@@ -27,9 +32,12 @@ def fail(messages):
 def parse_arguments(argv):
     blocks = None
     changing = None
-    while len(argv) > 2 and argv[1] in ("--blocks", "--changing"):
+    global may_be_empty
+    while len(argv) > 2 and argv[1] in ("--blocks", "--changing", "--may-be-empty"):
         if argv[1] == "--blocks":
             blocks = int(argv[2])
+        elif argv[1] == "--may-be-empty":
+            may_be_empty.append(argv[2])
         else:
             changing = tuple(argv[2].split(":", 1))
         argv = argv[:1] + argv[3:]
@@ -122,7 +130,8 @@ def main(argv):
                 errors.append("time %g: fetched data is for time %g" % (t, got))
         if blocks is not None:
             filled = [path for path, block in leaves(data)
-                      if hasattr(block, "GetNumberOfPoints") and block.GetNumberOfPoints() > 0]
+                      if hasattr(block, "GetNumberOfPoints") and
+                      (block.GetNumberOfPoints() > 0 or path.split("/")[0].split(":")[-1] in may_be_empty)]
             if len(filled) != blocks:
                 errors.append("time %g: %d blocks with points (%s), expected %d"
                               % (t, len(filled), ", ".join(filled), blocks))
