@@ -106,6 +106,22 @@ public:
         }, ForceKind::other, r);
     }
 
+    // Σ_b m W_ib of a particle 'distance' Δx from the face of a flat wall of particles of the
+    // fluid's mass m on the case's lattice, its layers covering the support (diffuseParticles reads
+    // it too: past a face, a diffuse particle is in the wall).
+    static Scalar flatWallShare(const Scene& s, Scalar distance) {
+        const double dx = s.physics.particleSpacing, h = s.constants.supportRadius;
+        const int reach = int(std::ceil(h / dx)) + 1, dim = s.physics.dimension;
+        double sum = 0;
+        for (int k = (dim == 3 ? -reach : 0); k <= (dim == 3 ? reach : 0); ++k)
+            for (int j = 0; j <= reach; ++j)
+                for (int i = -reach; i <= reach; ++i) {
+                    const Vec3 r(Scalar(i * dx), Scalar((distance + 0.5 + j) * dx), Scalar(k * dx));
+                    sum += double(s.kernel.W(r.norm()));
+                }
+        return Scalar(sum * s.constants.particleMass);
+    }
+
 private:
     // M_b ∇W_ib and M_b W_ib with boundary particle b where its own velocity takes it over the step.
     struct KernelAtEnd {
@@ -148,21 +164,6 @@ private:
         using Particle = std::size_t;
         Particle particle(std::size_t i) const { return i; }
     };
-
-    // Σ_b m W_ib of a particle 'distance' Δx from the face of a flat wall of particles of the
-    // fluid's mass m on the case's lattice, its layers covering the support.
-    static Scalar flatWallShare(const Scene& s, Scalar distance) {
-        const double dx = s.physics.particleSpacing, h = s.constants.supportRadius;
-        const int reach = int(std::ceil(h / dx)) + 1, dim = s.physics.dimension;
-        double sum = 0;
-        for (int k = (dim == 3 ? -reach : 0); k <= (dim == 3 ? reach : 0); ++k)
-            for (int j = 0; j <= reach; ++j)
-                for (int i = -reach; i <= reach; ++i) {
-                    const Vec3 r(Scalar(i * dx), Scalar((distance + 0.5 + j) * dx), Scalar(k * dx));
-                    sum += double(s.kernel.W(r.norm()));
-                }
-        return Scalar(sum * s.constants.particleMass);
-    }
 
     bool enabled_ = false;
     double distance_ = 0, restitution_ = 0, friction_ = 0;

@@ -75,8 +75,8 @@ if(PVPYTHON)
 
   # The seed's breaking dam with spray, foam and bubbles (diffuseParticles, issue 36); quick mode:
   # dx 0.025 (4,096 fluid) and 0.8 s of 1.5 s: the most spray / foam at one time after the impact
-  # on the far wall 349 / 2,680, none outside the tank, ids unique, foam's lifetimes in range
-  # (tutorials/breakingWave3D/diffuse.py); compression 0.9 %
+  # on the far wall 240 / 1,453, none outside the tank, ids unique, foam's lifetimes in range
+  # (tutorials/breakingWave3D/diffuse.py); compression 0.56 %
   tutorial_physics(breakingWave3D breakingWave3D "constant/fluidProperties:particleSpacing=0.025,system/controlDict:endTime=0.8"
     --max-density-error 0.02 --inside)
   set_property(TEST Tutorial.breakingWave3D APPEND PROPERTY ENVIRONMENT

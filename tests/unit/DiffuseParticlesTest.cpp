@@ -1,6 +1,7 @@
 // diffuseParticles (plugins/passive): spray flies the ballistic parabola to round-off; foam on a
 // still surface stays where it is and expires after its lifetime; an air bubble rises to the
-// surface and turns to foam there; a uniform flow generates nothing, a disordered one generates
+// surface and turns to foam there; one flying into a wall is deleted at its face; a uniform
+// flow generates nothing, a disordered one generates
 // particles, the same at any thread count and capped at maxParticles; the state a restart needs
 // is written and read back, and a restart continues bit for bit; the water is the same without
 // them.
@@ -34,12 +35,20 @@ struct DiffuseScene {
     std::unique_ptr<PassiveModel> model;
     int dim, n;
 
-    DiffuseScene(int dim_, int n_, const std::string& options = "") : dim(dim_), n(n_) {
+    // (floor: three rows of wall particles under the block and 8 spacings either side of it, 2D)
+    DiffuseScene(int dim_, int n_, const std::string& options = "", bool floor = false) : dim(dim_), n(n_) {
         s.physics = test::physicsFor(dim, dx, 2.6, 1000);
         s.physics.gravity = dim == 2 ? Vec3(0, -9.81, 0) : Vec3(0, 0, -9.81);
         kernel = test::createModel<Kernel>("type wendlandC2;", s.physics);
         const Vec3 hi = Vec3(n * dx, n * dx, dim == 3 ? n * dx : 0);
         test::fillLattice(s, *kernel, Vec3::Zero(), hi);
+        if (floor) {
+            std::vector<Vec3> rows;
+            for (int l = 0; l < 3; ++l)
+                for (int i = -8; i < n + 8; ++i) rows.emplace_back((i + 0.5) * dx, -(l + 0.5) * dx, 0);
+            test::addWallSystem(s, "floor", rows);
+            test::setWallMasses(s, test::fluidOf(s).particles.particleMass());
+        }
         dict = std::make_unique<Dictionary>(Dictionary::fromString("type diffuseParticles; " + options, "sphSchemes.passive.diffuse"));
         model = ModelRegistry::instance().create<PassiveModel>(*dict, s.physics, s.constants, nullptr, ".", "diffuse");
         model->initialise(s);
@@ -80,6 +89,20 @@ TEST(DiffuseParticles, SprayFliesTheBallisticParabola) {
         EXPECT_LT((sc.diffuse().particles.position()[0] - expected).norm(), test::tol(1e-12, 1e-5)) << dim << "D";
         EXPECT_LT((sc.diffuse().particles.velocity()[0] - (v0 + t * g)).norm(), test::tol(1e-12, 1e-5)) << dim << "D";
     }
+}
+
+TEST(DiffuseParticles, SprayIntoAWallIsDeletedAtItsFace) {
+    DiffuseScene sc(2, 6, "", true);
+    sc.add(Vec3(-0.05, 0.03, 0), Vec3(0, -1, 0)); // beside the block, falling onto the floor (face y = 0)
+    int steps = 0;
+    while (sc.diffuse().size() == 1 && steps < 200) {
+        const double y = sc.diffuse().particles.position()[0][1];
+        EXPECT_GT(y, -0.5 * dx) << "still there past the face, step " << steps;
+        sc.step(1e-3);
+        ++steps;
+    }
+    EXPECT_EQ(sc.diffuse().size(), 0u) << "deleted once past the floor's face";
+    EXPECT_GT(steps, 20) << "not before reaching it";
 }
 
 TEST(DiffuseParticles, FoamOnAStillSurfaceStaysAndExpires) {

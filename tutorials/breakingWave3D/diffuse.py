@@ -6,7 +6,7 @@
 At every written time: the number of spray (type 0), foam (1) and air-bubble (2) particles of
 the passive system 'diffuse' (diffuse.vtp), their largest speed, foam's shortest remaining
 lifetime. Checks: every particle inside the tank's box (constant/geometry's walls, with a
-support's margin; the tank is open at the top), ids unique at every time, foam's lifetime within (0, lifetime], and after
+support's margin), ids unique at every time, foam's lifetime within (0, lifetime], and after
 --after (default: the impact on the far wall, 0.5 s) at least --min-spray spray and --min-foam
 foam particles at some time. Exits 1 when a check fails.
 """
@@ -62,7 +62,7 @@ def main():
                                                  "%.3f" % foam.min() if len(foam) else "-"))
         if t > args.after:
             most[0], most[1] = max(most[0], counts[0]), max(most[1], counts[1])
-        outside = np.any(x < lo - h, axis=1) | np.any((x > hi + h)[:, :2], axis=1)  # (open at the top)
+        outside = np.any((x < lo - h) | (x > hi + h), axis=1)
         if np.any(outside):
             failures.append("%d diffuse particles outside the tank at t = %g" % (int(np.sum(outside)), t))
         if len(np.unique(ids)) != n:

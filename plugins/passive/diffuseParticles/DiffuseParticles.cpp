@@ -19,8 +19,8 @@
 // a constant g), foam goes with the fluid's Shepard velocity ṽ (x += Δt ṽ), a bubble rises,
 // v += Δt(−k_b g) + k_d (ṽ − v), x += Δt v. Foam
 // loses Δt of its lifetime a step and is deleted at 0; spray and bubbles do not age. A particle
-// that comes within Δx/2 of a wall or body particle (past the wall's face) or leaves the domain
-// is deleted; when the count reaches maxParticles no more are generated (the
+// past a wall's face (the walls' share of its density, Σ_b M_b W_ib, above a flat wall's at its
+// face: WallCollision.hpp) or out of the domain is deleted; when the count reaches maxParticles no more are generated (the
 // log says so). The random numbers are a counter-based hash of (seed, step, the fluid particle's
 // id, draw), so the result is the same at any thread count and after a restart; the only state
 // beyond the particles, the next id, is kept in uniform/passive.
@@ -49,11 +49,11 @@
 #include "PairLoop.hpp"
 #include "PassiveModel.hpp"
 #include "Plugin.hpp"
+#include "WallCollision.hpp" // WallCollision::flatWallShare
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -121,13 +121,14 @@ struct PotentialTerm {
 };
 
 // the fluid neighbours of a diffuse particle: their number and the Shepard velocity's sums; and
-// the nearest wall or body particle's squared distance
+// the boundaries' share of its density, Σ_b M_b W_ib (WallCollision's measure of the distance to
+// a face: past a face it exceeds a flat wall's at the face)
 struct FluidAroundTerm {
     struct Sum {
         Vec3 v = Vec3::Zero();
         Scalar w = 0;
         int count = 0;
-        Scalar wall2 = std::numeric_limits<Scalar>::max();
+        Scalar wallShare = 0;
     };
     static constexpr bool usesKernel = true, visitsOtherFluids = true;
     struct Particle {};
@@ -138,7 +139,7 @@ struct FluidAroundTerm {
         sum.w += w;
         ++sum.count;
     }
-    void wall(const Particle&, const WallPair& p, Sum& sum) const { sum.wall2 = std::min(sum.wall2, p.r2); }
+    void wall(const Particle&, const WallPair& p, Sum& sum) const { sum.wallShare += p.mass() * p.W; }
 };
 
 class DiffuseParticles final : public PassiveModel {
@@ -232,13 +233,13 @@ private:
         auto& life = *set.findScalar("lifetime");
         const Vec3 g = s.physics.gravity;
         const Scalar kb = Scalar(buoyancy_), kd = Scalar(drag_);
-        const Scalar inWall2 = Scalar(0.25) * s.physics.particleSpacing * s.physics.particleSpacing;
+        const Scalar atFace = WallCollision::flatWallShare(s, 0);
         keep_.assign(count, 1);
         forEachPairSum(s, diffuse, x, FluidAroundTerm{}, [&](std::size_t i, const auto&, const FluidAroundTerm::Sum& around) {
             const Vec3 fluidV = around.w > 0 ? Vec3(around.v / around.w) : v[i];
             const int t = around.count < sprayNeighbours_ ? spray : around.count > bubbleNeighbours_ ? bubble : foam;
             type[i] = Scalar(t);
-            keep_[i] = around.wall2 >= inWall2; // within Δx/2 of a wall particle: past its face, gone
+            keep_[i] = around.wallShare < atFace; // past a wall's face: gone
             if (t == spray) { // ballistic, exact for a constant g
                 x[i] += dt * v[i] + (Scalar(0.5) * dt * dt) * g;
                 v[i] += dt * g;
