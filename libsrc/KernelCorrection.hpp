@@ -87,6 +87,21 @@ struct MomentAndColour {
     }
 };
 
+// M_i and ∇c_i (MomentAndColour) over the fluid and the boundaries, V = m/ρ_j (a boundary
+// mirroring the fluid's density: ρ_i).
+struct MomentAndColourTerm {
+    using Sum = MomentAndColour;
+    static constexpr bool usesGradient = true;
+    using Particle = Scalar; // ρ_i
+    const Scalar* rho;
+    Scalar m;
+    Particle particle(std::size_t i) const { return rho[i]; }
+    void fluid(Scalar, const Pair& q, Sum& sum) const { sum.add(m / rho[q.j], q); }
+    void wall(Scalar rhoi, const WallPair& q, Sum& sum) const {
+        sum.add(q.mass() / (q.src.mirrored ? rhoi : q.src.rho[q.j]), q);
+    }
+};
+
 // L_i of every particle of the fluid at positions x (in 2D the z row and column are zero).
 inline void kernelCorrectionMatrices(const Scene& s, const ParticleSystem& fluid, const std::vector<Vec3>& x,
                                      std::vector<Mat3>& L) {

@@ -14,7 +14,6 @@
 #include <omp.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include <cmath>
 #include <random>
@@ -215,35 +214,32 @@ TEST(DiffuseParticles, BadOptionsNameTheirKeyword) {
 
 namespace {
 
-void write(const std::filesystem::path& file, const std::string& text) {
-    std::filesystem::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-}
-
 // Two blocks of water meeting head-on at 2 m/s each (no walls, no gravity): air is trapped where
 // they meet from the first step, so diffuse particles are generated at once.
-std::filesystem::path collidingBlocks(const std::filesystem::path& dir, const std::string& timing) {
+std::filesystem::path collidingBlocks(const test::TempDir& tmp, const std::string& name, const std::string& timing,
+                                      bool diffuse = true) {
     // (adjustableRunTime: the step that lands on the restart time is the same in both runs)
-    write(dir / "system/controlDict", timing + "deltaT 2e-4;\nwriteControl adjustableRunTime;\nwriteInterval 0.005;\n");
-    write(dir / "system/sphSchemes", "kernel { type wendlandC2; }\npressure { type wcsph; soundSpeed 40; }\n"
-                                     "integrator { type symplecticEuler; }\n"
-                                     "passive { diffuse { type diffuseParticles; " + eager + "} }\n");
-    write(dir / "constant/fluidProperties", "dimension 2;\nrho0 1000;\nparticleSpacing 0.01;\nsupportRadius 2.6;\n"
-                                            "gravity (0 0 0);\n");
-    write(dir / "constant/geometry", "fluid { left { type box; min (0 0 0); max (0.1 0.1 0); velocity (2 0 0); }\n"
-                                     "        right { type box; min (0.12 0 0); max (0.22 0.1 0); velocity (-2 0 0); } }\n");
-    return dir;
+    tmp.writeFile(name + "/system/controlDict", timing + "deltaT 2e-4;\nwriteControl adjustableRunTime;\nwriteInterval 0.005;\n");
+    tmp.writeFile(name + "/system/sphSchemes", "kernel { type wendlandC2; }\npressure { type wcsph; soundSpeed 40; }\n"
+                                               "integrator { type symplecticEuler; }\n" +
+                                                   (diffuse ? "passive { diffuse { type diffuseParticles; " + eager + "} }\n" : ""));
+    tmp.writeFile(name + "/constant/fluidProperties", "dimension 2;\nrho0 1000;\nparticleSpacing 0.01;\nsupportRadius 2.6;\n"
+                                                      "gravity (0 0 0);\n");
+    tmp.writeFile(name + "/constant/geometry",
+                  "fluid { left { type box; min (0 0 0); max (0.1 0.1 0); velocity (2 0 0); }\n"
+                  "        right { type box; min (0.12 0 0); max (0.22 0.1 0); velocity (-2 0 0); } }\n");
+    return tmp.path() / name;
 }
 
 TEST(DiffuseParticles, RestartContinuesBitForBit) {
     log::setQuiet(true);
     test::TempDir tmp;
-    const auto whole = collidingBlocks(tmp.path() / "whole", "endTime 0.02;\n");
+    const auto whole = collidingBlocks(tmp, "whole", "endTime 0.02;\n");
     Simulation(whole).run();
-    const auto split = collidingBlocks(tmp.path() / "split", "endTime 0.01;\n");
+    const auto split = collidingBlocks(tmp, "split", "endTime 0.01;\n");
     Simulation(split).run();
     EXPECT_TRUE(std::filesystem::exists(split / "0.01/uniform/passive"));
-    collidingBlocks(split, "startFrom latestTime;\nendTime 0.02;\n");
+    collidingBlocks(tmp, "split", "startFrom latestTime;\nendTime 0.02;\n");
     Simulation(split).run();
     {
         const ParticleSet fa = readVtp(whole / "0.02/fluid.vtp"), fb = readVtp(split / "0.02/fluid.vtp");
@@ -267,9 +263,7 @@ TEST(DiffuseParticles, RestartContinuesBitForBit) {
     EXPECT_EQ(a.id(), b.id());
     EXPECT_EQ(*a.findScalar("type"), *b.findScalar("type"));
     // they never act on the water: the same run without them has the same water
-    const auto without = collidingBlocks(tmp.path() / "without", "endTime 0.02;\n");
-    write(without / "system/sphSchemes", "kernel { type wendlandC2; }\npressure { type wcsph; soundSpeed 40; }\n"
-                                         "integrator { type symplecticEuler; }\n");
+    const auto without = collidingBlocks(tmp, "without", "endTime 0.02;\n", false);
     Simulation(without).run();
     const ParticleSet f = readVtp(whole / "0.02/fluid.vtp"), g = readVtp(without / "0.02/fluid.vtp");
     EXPECT_EQ(f.position(), g.position());

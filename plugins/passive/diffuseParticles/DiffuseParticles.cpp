@@ -44,7 +44,7 @@
 //           seed             1;
 //       }
 //   }
-#include "KernelCorrection.hpp" // MomentAndColour, smallestEigenvalue
+#include "KernelCorrection.hpp" // MomentAndColourTerm, smallestEigenvalue
 #include "Log.hpp"
 #include "PairLoop.hpp"
 #include "PassiveModel.hpp"
@@ -80,18 +80,6 @@ double uniform(std::uint64_t seed, std::uint64_t step, std::uint64_t particle, s
 struct Threshold {
     double min, max;
     double operator()(double I) const { return (std::min(I, max) - std::min(I, min)) / (max - min); }
-};
-
-// the renormalised outward normal and M's smallest eigenvalue, over the fluid and the walls
-struct SurfaceTerm {
-    using Sum = MomentAndColour;
-    static constexpr bool usesGradient = true;
-    using Particle = Scalar; // ρ_i
-    const Scalar* rho;
-    Scalar m;
-    Particle particle(std::size_t i) const { return rho[i]; }
-    void fluid(Scalar, const Pair& q, Sum& sum) const { sum.add(m / rho[q.j], q); }
-    void wall(Scalar rhoi, const WallPair& q, Sum& sum) const { sum.add(q.mass() / (q.src.mirrored ? rhoi : q.src.rho[q.j]), q); }
 };
 
 // the trapped-air and wave-crest sums over the fluid neighbours
@@ -283,7 +271,7 @@ private:
         const auto& id = fluid.particles.id();
         normal_.resize(count);
         surface_.resize(count);
-        forEachPairSum(s, fluid, x, SurfaceTerm{fluid.particles.density().data(), m},
+        forEachPairSum(s, fluid, x, MomentAndColourTerm{fluid.particles.density().data(), m},
                        [&](std::size_t i, Scalar, const MomentAndColour& sum) {
                            normal_[i] = sum.outwardNormal(d);
                            surface_[i] = smallestEigenvalue(sum.moment, d) < Scalar(0.75) && normal_[i].squaredNorm() > 0;

@@ -29,7 +29,7 @@
 // walls are not pulled (no adhesion).
 //
 //   surfaceTension { type mueller2003; sigma 0.0728; }   // σ [N/m]
-#include "KernelCorrection.hpp" // MomentAndColour, smallestEigenvalue
+#include "KernelCorrection.hpp" // MomentAndColourTerm, smallestEigenvalue
 #include "PairLoop.hpp"
 #include "Plugin.hpp"
 #include "SurfaceTensionModel.hpp"
@@ -42,20 +42,6 @@
 
 namespace {
 using namespace spindrift;
-
-// ∇c_i and M_i over the fluid and the boundaries.
-struct ColourTerm {
-    using Sum = MomentAndColour;
-    static constexpr bool usesGradient = true;
-    using Particle = Scalar; // ρ_i
-    const Scalar* rho;
-    Scalar m;
-    Particle particle(std::size_t i) const { return rho[i]; }
-    void fluid(Scalar, const Pair& q, Sum& sum) const { sum.add(m / rho[q.j], q); }
-    void wall(Scalar rhoi, const WallPair& q, Sum& sum) const {
-        sum.add(q.mass() / (q.src.mirrored ? rhoi : q.src.rho[q.j]), q);
-    }
-};
 
 // An orthonormal basis of the plane normal to n (its first d − 1 columns; 2D: the one tangent in
 // the xy plane).
@@ -164,7 +150,7 @@ public:
         delta_.resize(count);
         rawKappa_.resize(count);
         // w_i, the normals, the force's direction
-        forEachPairSum(s, fluid, x, ColourTerm{rho, m}, [&](std::size_t i, Scalar, const MomentAndColour& sum) {
+        forEachPairSum(s, fluid, x, MomentAndColourTerm{rho, m}, [&](std::size_t i, Scalar, const MomentAndColour& sum) {
             const Scalar g = sum.colour.norm();
             direction_[i] = g > 0 ? Vec3(sum.colour / g) : Vec3::Zero();
             normal_[i] = sum.outwardNormal(d);
