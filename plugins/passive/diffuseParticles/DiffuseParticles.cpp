@@ -11,8 +11,8 @@
 //                  on the surface only, and only where v̂_i·n̂_i ≥ 0.6 (moving along its normal)
 //   kinetic energy I_k  = Φ(|v_i|²/2, τ_k)
 // and generates n_i = I_k (k_ta I_ta + k_wc I_wc) Δt diffuse particles (rounded stochastically:
-// ⌊n_i + U⌋), each placed in the cylinder of radius Δx/2 about x_i along v_i Δt and moving with v_i
-// plus its offset across the cylinder (the paper's v_d). Each diffuse particle is typed every
+// ⌊n_i + U⌋, at most 100), each placed in the cylinder of radius Δx/2 about x_i along v_i Δt and
+// moving with v_i plus its offset across the cylinder (the paper's v_d). Each diffuse particle is typed every
 // step by its fluid neighbours n within h: spray below sprayNeighbours, air bubble above
 // bubbleNeighbours, foam between (defaults 0.1 and 0.6 of a full neighbourhood on the case's
 // lattice: 8 and 48 at h = 2.6 Δx in 3D, 2 and 12 in 2D); spray falls ballistically (exact for
@@ -286,7 +286,10 @@ private:
                            const bool alongNormal = pi.surface && speed > 0 && pi.v.dot(pi.n) >= Scalar(0.6) * speed;
                            const double crest = alongNormal ? waveCrest_(double(sum.crest)) : 0.0;
                            const double n = kinetic * (kTrappedAir_ * trappedAir_(double(sum.trappedAir)) + kWaveCrest_ * crest) * dt;
-                           generated_[i] = int(std::floor(n + uniform(seed_, step, id[i], 0)));
+                           // (at most maxPerParticle a step: rates far beyond Ihmsen's would fill the
+                           // memory; not a number, from an infinite rate times 0: none)
+                           const double drawn = std::floor(n + uniform(seed_, step, id[i], 0));
+                           generated_[i] = drawn > 0 ? int(std::min(drawn, double(maxPerParticle))) : 0;
                        });
         // the new particles in the fluid's order (a serial prefix sum: independent of the threads)
         auto& set = diffuse.particles;
@@ -346,6 +349,8 @@ private:
           << " diffuse particles not generated (" << cappedSteps_ << " steps with the cap so far)";
         log::warning(m.str());
     }
+
+    static constexpr int maxPerParticle = 100; // diffuse particles a fluid particle generates a step, at most
 
     std::string name_;
     Threshold trappedAir_, waveCrest_, kineticEnergy_;
