@@ -909,6 +909,14 @@ void Simulation::restorePassiveSystems(const fs::path& timeDir) {
     }
 }
 
+namespace {
+// The FoamFile header of a uniform/ dictionary of states (bodies, passive).
+std::string uniformFileHeader(const std::string& object) {
+    return "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n    object      " +
+           object + ";\n}\n\n";
+}
+} // namespace
+
 std::string Simulation::passiveStateFile() const {
     const Dictionary* passive = case_.sphSchemes.findDict("passive");
     if (!passive) return {};
@@ -918,8 +926,7 @@ std::string Simulation::passiveStateFile() const {
         if (const std::string state = passive_[k]->stateText(); !state.empty())
             entries << names[k] << "\n{\n" << state << "}\n";
     if (entries.str().empty()) return {};
-    return "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
-           "    object      passive;\n}\n\n" + entries.str();
+    return uniformFileHeader("passive") + entries.str();
 }
 
 void Simulation::readPassiveStates(const fs::path& timeDir) {
@@ -936,8 +943,7 @@ std::string Simulation::bodiesFile() const {
     const auto bodies = scene_.ofRole(SystemRole::body);
     if (bodies.empty()) return {};
     std::ostringstream s;
-    s << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;\n"
-      << "    object      bodies;\n}\n\n";
+    s << uniformFileHeader("bodies");
     for (const ParticleSystem* b : bodies) s << b->name() << "\n{\n" << b->body->stateText() << "}\n";
     return s.str();
 }
