@@ -25,7 +25,7 @@ Options:
                       bubbles are in the water); their numbers in the title
     -surface yes|no   draw the free-surface mesh (default yes, when the case has it): each block of
                       triangles without particle fields (a freeSurface function object's
-                      <name>.vtp), light grey-blue, semi-transparent
+                      <name>.vtp), light blue, semi-transparent
     -surfaceOpacity X the surface mesh's opacity, 0 to 1 (default 0.35)
     -fluidOpacity X   the fluid particles' opacity, 0 to 1 (default 1; 0: the surface mesh and
                       the diffuse particles alone)
@@ -376,7 +376,7 @@ def main():
                 if kind == "surface":
                     display.SetRepresentationType("Surface")
                     display.ColorArrayName = ["POINTS", ""]
-                    display.AmbientColor = display.DiffuseColor = [0.75, 0.85, 0.95]
+                    display.AmbientColor = display.DiffuseColor = [0.55, 0.75, 1.0]
                     display.Opacity = args["surfaceOpacity"]
                     display.LineWidth = 2
                     continue
@@ -394,7 +394,7 @@ def main():
                         lut.AutomaticRescaleRangeMode = "Never"
                     except AttributeError:
                         pass
-                    display.SetScalarBarVisibility(view, True)
+                    display.SetScalarBarVisibility(view, fluid_opacity > 0)
                     bar = pv.GetScalarBar(lut, view)
                     bar.Title = ("speed" if field == "velocity" else "%s magnitude" % field if vector else field) + (" [%s]" % units[field] if field in units else "")
                     bar.ComponentTitle = ""
@@ -405,7 +405,7 @@ def main():
                     bar.HorizontalTitle = 1
                     bar.RangeLabelFormat = bar.LabelFormat = "%.3g"
                     bar.TitleFontSize = bar.LabelFontSize = 14
-                    bar.Visibility = 1
+                    bar.Visibility = 1 if fluid_opacity > 0 else 0  # no colour bar for an invisible fluid
                 elif kind == "diffuse":
                     # squares a little smaller than the fluid's (ParaView 5.11 draws points as
                     # spheres behind everything in a parallel projection)
@@ -431,7 +431,7 @@ def main():
                 else:
                     display.ColorArrayName = ["POINTS", ""]
                     display.AmbientColor = display.DiffuseColor = [0.55, 0.55, 0.55]
-            title = "%s   t = %s s   %s" % (name, t, field)
+            title = "%s   t = %s s" % (name, t) + ("   " + field if fluid_opacity > 0 else "")
             if t in diffuse_counts:
                 title += "   (%s)" % ", ".join("%d %s" % (n, kind) for n, (kind, _) in zip(diffuse_counts[t], DIFFUSE_TYPES))
             label = pv.Text(Text=title)
