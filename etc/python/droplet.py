@@ -13,7 +13,8 @@ Measured, at every written time from --from on (default: the last third of the r
 roundness, the outline's largest radius over its smallest (the farthest particle from the
 centroid in each of 36 sectors, or 100 cones in 3D: sqrt(2) for the square, 1 for a disc); the
 particles farther than R + 3 dx from the centroid (escaped); the mean pressure
-of the particles within R/2 of the centroid. Checks: the mean of that pressure over those times
+of the particles within R/2 of the centroid (with akinci2013, p + cohesionPressure when the case
+writes it: a pairwise cohesion's own bulk pressure, which p balances). Checks: the mean of that pressure over those times
 within --laplace-tolerance (5 %) of the jump, the last roundness within --roundness-tolerance
 (2 %) of 1, no particle escaped. Exits 1 when a check fails.
 """
@@ -54,6 +55,10 @@ def state(path, d):
     (2D) or 100 cones about evenly spread directions (3D), each particle in the sector of the
     direction nearest its own (sqrt(2) for a square, sqrt(3) for a cube, 1 for a disc or ball)."""
     x, p = sv.read_vtp(path, "pressure")
+    cohesion = sv.read_polydata(path).GetPointData().GetArray("cohesionPressure")
+    if cohesion is not None:  # akinci2013: the mechanical pressure is p plus the cohesion's own
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        p = p + vtk_to_numpy(cohesion)
     x = x[:, :d]
     r = x - x.mean(axis=0)
     dist = np.linalg.norm(r, axis=1)

@@ -1,8 +1,11 @@
 // Surface tension (plugins/surfaceTension): mueller2003 on droplets at rest, where its figures
 // are known: the curvature of a disc (1/R) and a ball (2/R), the force's direction (inwards), its
 // total (σ times the curvature times the surface: the delta function integrates to 1 across the
-// surface), no net force, nothing on a flat surface; the capillary step limit; bad input.
+// surface), no net force, nothing on a flat surface; akinci2013's pressure jump from σ (its γ
+// calibrated on a lattice drop, checked here on rings and shells), momentum kept, adhesion and
+// its reaction on the wall; the capillary step limit; bad input.
 #include "PairLoop.hpp"
+#include "Reactions.hpp"
 #include "TestSupport.hpp"
 
 #include <gtest/gtest.h>
@@ -26,16 +29,24 @@ struct DropScene {
     // particles on rings (2D) or shells (3D, Fibonacci points on each) Δx apart, the outer one
     // Δx/2 inside 'radius', each particle carrying about Δx^d: the layout a droplet relaxes to (a
     // lattice disc's staircase turns the normals in steps, which no smooth surface does)
-    DropScene(int dim, double radius) {
+    // lattice: the case's lattice points (k + ½)Δx within 'radius' instead
+    DropScene(int dim, double radius, bool lattice = false) {
         s.physics = test::physicsFor(dim, dx, 2.6, rho0);
         kernel = test::createModel<Kernel>("type wendlandC2;", s.physics);
         const Vec3 half = Vec3(radius, radius, dim == 3 ? radius : 0);
         ParticleSystem& f = test::fillLattice(s, *kernel, -half, half); // (the mass, search and constants)
         std::vector<Vec3> points;
-        if (dim == 3) points.push_back(Vec3::Zero()); // (in 2D the innermost ring is Δx/2 from the centre)
+        const int M = int(std::ceil(radius / dx));
+        for (int c = (dim == 3 ? -M : 0); lattice && c < (dim == 3 ? M : 1); ++c)
+            for (int b = -M; b < M; ++b)
+                for (int a = -M; a < M; ++a) {
+                    const Vec3 p((a + 0.5) * dx, (b + 0.5) * dx, dim == 3 ? (c + 0.5) * dx : 0);
+                    if (p.norm() < radius) points.push_back(p);
+                }
+        if (dim == 3 && !lattice) points.push_back(Vec3::Zero()); // (in 2D the innermost ring is Δx/2 from the centre)
         const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
         int layer = 0;
-        for (double r = radius - 0.5 * dx; r > (dim == 2 ? 0.25 : 0.75) * dx; r -= dx, ++layer) {
+        for (double r = radius - 0.5 * dx; !lattice && r > (dim == 2 ? 0.25 : 0.75) * dx; r -= dx, ++layer) {
             const long n = std::lround(dim == 2 ? 2 * std::numbers::pi * r / dx : 4 * std::numbers::pi * r * r / (dx * dx));
             for (long k = 0; k < n; ++k) {
                 if (dim == 2) {
@@ -150,6 +161,109 @@ TEST(Mueller2003, CurvatureIsAllocatedOnlyWithTheModel) {
     EXPECT_NE(sc.fluid().particles.findScalar("curvature"), nullptr);
 }
 
+// akinci2013 on drops of the case's lattice: the mechanical pressure at R/2, the equation of
+// state's p(R/2) = ∫ ρ a·(−x̂) dr from R/2 out (Σ_{|x| > R/2} m a·(−x̂)/(Ω |x|^(d−1)), Ω = 2π or 4π)
+// plus the cohesion's own pressure inside (the field cohesionPressure, its mean over |x| < R/4,
+// where the lattice's is uniform), is Laplace's σ (d − 1)/R (R from the drop's volume) on average over radii. One drop is
+// no measure: the cohesion's pressure is 25–70 times σ/R here, and a lattice disc's staircase moves
+// the part its surface holds by ±0.5 % of it from one radius to the next.
+double akinciTension(int dim, double radius) {
+    DropScene sc(dim, radius, true);
+    auto m = sc.model("type akinci2013; sigma 0.0728;");
+    const auto& a = sc.accelerate(*m);
+    const auto& x = sc.fluid().particles.position();
+    const auto& cohesion = *sc.fluid().particles.findScalar("cohesionPressure");
+    const double mass = sc.fluid().particles.particleMass();
+    const double solidAngle = dim == 2 ? 2 * std::numbers::pi : 4 * std::numbers::pi;
+    const double R = std::pow(double(x.size()) * std::pow(dx, dim) / (dim == 2 ? std::numbers::pi : 4 * std::numbers::pi / 3),
+                              1.0 / dim);
+    double p = 0, cohesionSum = 0, count = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const double r = x[i].norm();
+        if (r > R / 2) p += mass * double(a[i].dot(-x[i] / x[i].norm())) / (solidAngle * std::pow(r, dim - 1));
+        if (r < R / 4) {
+            cohesionSum += cohesion[i];
+            ++count;
+        }
+    }
+    return (p + cohesionSum / count) * R / (dim - 1);
+}
+
+void checkAkinciTension(int dim, double from, double to, double tolerance) {
+    double sum = 0, low = 1e300, high = -1e300;
+    int n = 0;
+    for (double R = from; R <= to + 1e-9; R += 0.5, ++n) {
+        const double t = akinciTension(dim, R * dx) / sigma;
+        sum += t;
+        low = std::min(low, t);
+        high = std::max(high, t);
+    }
+    std::cout << dim << "D akinci2013 lattice drops of R = " << from << "-" << to << " dx: tension " << sum / n
+              << " of sigma on average (" << low << " to " << high << ")\n";
+    EXPECT_NEAR(sum / n, 1.0, 0.02);
+    EXPECT_GT(low, 1 - tolerance);
+    EXPECT_LT(high, 1 + tolerance);
+}
+
+TEST(Akinci2013, LatticeDiscsHoldUpSigmaOverR) { checkAkinciTension(2, 10, 40, 0.05); }
+
+TEST(Akinci2013, LatticeBallsHoldUpTwoSigmaOverR) { checkAkinciTension(3, 8, 14, 0.05); }
+
+// On particles that do not lie on a lattice (rings): no net force, the terms pair-antisymmetric.
+TEST(Akinci2013, MomentumIsKept) {
+    for (int dim : {2, 3}) {
+        DropScene sc(dim, (dim == 2 ? 15 : 7) * dx);
+        auto m = sc.model("type akinci2013; sigma 0.0728;");
+        const auto& a = sc.accelerate(*m);
+        const double mass = sc.fluid().particles.particleMass();
+        Vec3 net = Vec3::Zero();
+        double scale = 0;
+        for (const Vec3& ai : a) {
+            net += mass * ai;
+            scale += mass * ai.norm();
+        }
+        EXPECT_GT(scale, 0);
+        EXPECT_LT(net.norm(), test::tol(1e-12, 1e-5) * scale) << dim << "D";
+    }
+}
+
+// adhesion 1: the fluid next to a wall is pulled towards it, by M_b A(r) per unit γ per boundary
+// particle, and the wall feels the opposite (the reaction, kind other); adhesion 0: no wall term
+TEST(Akinci2013, AdhesionPullsTheFluidToTheWallWhichFeelsTheReaction) {
+    DropScene sc(12, 6, 0);
+    std::vector<Vec3> floor;
+    for (int k = 0; k < 12; ++k)
+        for (int row = 1; row <= 3; ++row) floor.emplace_back((k + 0.5) * dx, -(row - 0.5) * dx, 0);
+    ParticleSystem& wall = test::addWallSystem(sc.s, "floor", floor);
+    test::setWallMasses(sc.s, sc.fluid().particles.particleMass());
+    test::rebuild(sc.s);
+    auto without = sc.model("type akinci2013; sigma 0.0728;");
+    const std::vector<Vec3> a0 = sc.accelerate(*without);
+    auto with = sc.model("type akinci2013; sigma 0.0728; adhesion 1;");
+    const std::vector<Vec3> a1 = sc.accelerate(*with);
+    const double mass = sc.fluid().particles.particleMass();
+    const auto& x = sc.fluid().particles.position();
+    Vec3 pull = Vec3::Zero();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const Vec3 adhesion = a1[i] - a0[i];
+        if (x[i][1] + 0.5 * dx >= sc.s.constants.supportRadius) EXPECT_EQ(adhesion.norm(), 0) << "beyond the support";
+        else EXPECT_LT(adhesion[1], 0) << "towards the wall, particle at y = " << x[i][1];
+        pull += mass * adhesion;
+    }
+    EXPECT_LT(std::abs(pull[0]), 1e-6 * std::abs(pull[1])); // periodic along x: straight down
+    Reactions r;
+    r.want(wall.index);
+    r.clear();
+    with->addReactions(sc.s, sc.fluid(), test::stepOf(sc.s), r);
+    const Vec3 reaction = r.of(wall.index, ForceKind::other).force.cast<Scalar>();
+    EXPECT_NEAR(reaction[1], -pull[1], test::tol(1e-9, 1e-4) * std::abs(pull[1]));
+    Reactions none;
+    none.want(wall.index);
+    none.clear();
+    without->addReactions(sc.s, sc.fluid(), test::stepOf(sc.s), none);
+    EXPECT_EQ(none.of(wall.index, ForceKind::other).force.norm(), 0);
+}
+
 TEST(SurfaceTension, CapillaryTimeStepLimit) {
     DropScene sc(2, 10 * dx);
     auto m = sc.model(mueller);
@@ -160,13 +274,20 @@ TEST(SurfaceTension, CapillaryTimeStepLimit) {
 
 TEST(SurfaceTension, BadSigmaIsRefusedNamingTheKeyword) {
     DropScene sc(2, 10 * dx);
-    for (const std::string& text : {std::string("type mueller2003;"), std::string("type mueller2003; sigma -1;")}) {
+    for (const std::string& text : {std::string("type mueller2003;"), std::string("type mueller2003; sigma -1;"),
+                                     std::string("type akinci2013;")}) {
         try {
             sc.model(text);
             ADD_FAILURE() << "accepted: " << text;
         } catch (const InputError& e) {
             EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
         }
+    }
+    try {
+        sc.model("type akinci2013; sigma 0.0728; adhesion -1;");
+        ADD_FAILURE() << "accepted a negative adhesion";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("adhesion"), std::string::npos) << e.what();
     }
 }
 
