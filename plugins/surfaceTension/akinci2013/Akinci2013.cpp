@@ -18,10 +18,10 @@
 // like van der Waals' a/v²), which the equation of state's pressure balances: inside a flat
 // surface p = −P_c ≠ 0, and the mechanical pressure, the one whose jump is Laplace's, is p + P_c
 // (Irving & Kirkwood). The model writes P_c per particle, `cohesionPressure` =
-// (m/(2d V_i)) Σ_j x_ij·a_ij over its pair accelerations a_ij, V_i = Δx^d ρ0/ρ_i its lattice cell. At start it takes a drop of the case's lattice
-// (radius 8h, at ρ0) and computes, per unit γ, the jump in p its forces hold up,
-// ⟨∫ ρ a·(−x̂) dr⟩ over directions, less the lattice's bulk −P_c: that is σ (d − 1)/R per unit γ,
-// so γ = σ/σ₁ (the case's kernel, Δx, h and ρ0 enter as in the run; the figures are logged). Both
+// (m/(2d V_i)) Σ_j x_ij·a_ij over its pair accelerations a_ij, V_i = Δx^d ρ0/ρ_i its lattice cell.
+// At start it computes the tension per unit γ for the case's kernel, Δx, h and m (calibrate()):
+// the cohesion's by Kirkwood & Buff's integral, the curvature term's from the jump it holds up in
+// a drop of the case's lattice (it has no bulk part); γ = σ/σ₁, logged with the bulk pressure. Both
 // terms are pair-antisymmetric (K_ij = K_ji): the fluid's momentum is kept pair by pair. The
 // adhesion β = `adhesion`·γ pulls the fluid to every boundary particle of a boundary model with
 // masses; its reaction is reported on the wall (ForceKind other).
