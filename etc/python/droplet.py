@@ -21,7 +21,6 @@ within --laplace-tolerance (5 %) of the jump, the last roundness within --roundn
 import argparse
 import math
 import os
-import re
 import sys
 
 import numpy as np
@@ -29,14 +28,6 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import spindriftValidation as sv  # noqa: E402
 
-
-def sigma_of(case):
-    """sigma of system/sphSchemes' surfaceTension dictionary."""
-    text = sv._dictionary_text(os.path.join(case, "system", "sphSchemes"))
-    block = re.search(r"\bsurfaceTension\s*\{([^}]*)\}", text)
-    if not block:
-        sys.exit("%s/system/sphSchemes has no surfaceTension dictionary" % case)
-    return float(re.search(r"\bsigma\s+([-+0-9.eE]+)\s*;", block.group(1)).group(1))
 
 
 def directions(d, count):
@@ -78,7 +69,7 @@ def main():
     args = parser.parse_args()
     props = sv.fluid_properties(args.case)
     d, dx = int(props["dimension"]), props["particleSpacing"]
-    sigma = sigma_of(args.case)
+    sigma = sv.surface_tension_sigma(args.case)
     times = sv.written_times(args.case)
     if len(times) < 2:
         sys.exit("no times written in %s" % args.case)
@@ -111,10 +102,7 @@ def main():
         failures.append("roundness %.4f" % roundness)
     if escaped:
         failures.append("%d particles escaped" % escaped)
-    if failures:
-        print("FAILED: " + "; ".join(failures))
-        sys.exit(1)
-    print("OK")
+    sv.finish(failures)
 
 
 if __name__ == "__main__":

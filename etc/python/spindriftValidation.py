@@ -100,6 +100,23 @@ def _value(text):
         return text
 
 
+def surface_tension_sigma(case="."):
+    """sigma [N/m] of the surfaceTension dictionary of <case>/system/sphSchemes (exits without one)."""
+    text = _dictionary_text(os.path.join(case, "system", "sphSchemes"))
+    block = re.search(r"\bsurfaceTension\s*\{([^}]*)\}", text)
+    if not block:
+        sys.exit("%s/system/sphSchemes has no surfaceTension dictionary" % case)
+    return float(re.search(r"\bsigma\s+([-+0-9.eE]+)\s*;", block.group(1)).group(1))
+
+
+def finish(failures):
+    """A check script's last words: FAILED with the failures and exit status 1, else OK."""
+    if failures:
+        print("FAILED: " + "; ".join(failures))
+        sys.exit(1)
+    print("OK")
+
+
 def fluid_properties(case="."):
     """constant/fluidProperties as a dict: numbers as floats, vectors as numpy arrays."""
     text = re.sub(r"FoamFile\s*\{[^}]*\}", "", _dictionary_text(os.path.join(case, "constant", "fluidProperties")))

@@ -74,10 +74,7 @@ def main():
         failures.append("at most %d spray particles after %g s (at least %d)" % (most[0], args.after, args.min_spray))
     if most[1] < args.min_foam:
         failures.append("at most %d foam particles after %g s (at least %d)" % (most[1], args.after, args.min_foam))
-    if failures:
-        print("FAILED: " + "; ".join(failures))
-        sys.exit(1)
-    print("OK")
+    sv.finish(failures)
 
 
 if __name__ == "__main__":

@@ -19,7 +19,6 @@ when a check fails.
 import argparse
 import math
 import os
-import re
 import sys
 
 import numpy as np
@@ -32,13 +31,6 @@ for d in (os.environ.get("SPINDRIFT_DIR", ""), os.path.join(here, "..", "..")):
 import spindriftValidation as sv  # noqa: E402
 
 
-def sigma_of(case):
-    text = sv._dictionary_text(os.path.join(case, "system", "sphSchemes"))
-    block = re.search(r"\bsurfaceTension\s*\{([^}]*)\}", text)
-    if not block:
-        sys.exit("%s/system/sphSchemes has no surfaceTension dictionary" % case)
-    return float(re.search(r"\bsigma\s+([-+0-9.eE]+)\s*;", block.group(1)).group(1))
-
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -49,7 +41,7 @@ def main():
     if int(props["dimension"]) != 2:
         sys.exit("oscillation.py compares a 2D droplet")
     dx, rho, nu = props["particleSpacing"], props["rho0"], props.get("viscosity", 0.0)
-    sigma = sigma_of(args.case)
+    sigma = sv.surface_tension_sigma(args.case)
     times, elongation, count = [], [], 0
     for t, name in sv.written_times(args.case):
         x, _ = sv.read_vtp(os.path.join(args.case, name, "fluid.vtp"), "velocity")
@@ -83,10 +75,7 @@ def main():
         failures.append("period %+.2f %% off" % (100 * error))
     if len(peaks) >= 2 and not peaks[-1] < peaks[0]:
         failures.append("the oscillation does not decay (peaks %.4f then %.4f)" % (peaks[0], peaks[-1]))
-    if failures:
-        print("FAILED: " + "; ".join(failures))
-        sys.exit(1)
-    print("OK")
+    sv.finish(failures)
 
 
 if __name__ == "__main__":
