@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""Wave height and period at the waterLevel gauges of waveTank2D against the wave maker's target.
+"""Wave height and period at the waterLevel gauges of a wave flume (tutorials waveTank2D,
+oceanBreaking3D) against the wave maker's target. Run it in the case:
 
-    python3 checkWaves.py [--gauges 0 1] [--height-tolerance 0.05] [--period-tolerance 0.01]
+    python3 $SPINDRIFT_DIR/etc/python/checkWaves.py [--gauges 0 1] [--height-tolerance 0.05]
+                                                    [--period-tolerance 0.01] [--reflector X]
 
-Reads the target (waveHeight, period, depth, rampTime) from constant/geometry and the gauges'
-levels from postProcessing/gauges/0/gauges.dat. At each gauge x_g the waves are measured over
+Reads the target (waveHeight, period, depth, rampTime) from constant/geometry, the piston's face
+at rest (the max x of the wall named piston) and the gauges' levels from
+postProcessing/gauges/0/gauges.dat. At each gauge x_g the waves are measured over
 the window from the arrival of the fully ramped waves, (x_g - x_p)/c_g + rampTime + T (x_p the
 piston's face, c_g the group velocity of linear theory), to the earliest return of a reflection
 from the far end (--reflector, default the tank's end): (2 x_r - x_g - x_p)/c_g. In the window,
@@ -42,7 +45,8 @@ def main():
     p.add_argument("--height-tolerance", type=float, default=0.05)
     p.add_argument("--period-tolerance", type=float, default=0.01)
     p.add_argument("--reflector", type=float, default=None, help="x of the far end [m]")
-    p.add_argument("--piston-face", type=float, default=0.12, help="x of the piston's face at rest [m]")
+    p.add_argument("--piston-face", type=float, default=None,
+                   help="x of the piston's face at rest [m] (default: the max x of the wall 'piston')")
     p.add_argument("--min-waves", type=int, default=2)
     p.add_argument("--height-range", type=float, nargs=2, metavar=("LO", "HI"),
                    help="accept a mean height from LO H to HI H instead of the tolerance (a coarse quick mode)")
@@ -55,6 +59,11 @@ def main():
     if reflector is None:  # the tank's end: the container's max x
         m = re.search(r"tank\s*\{[^}]*max\s*\(\s*([-+0-9.eE]+)", geometry)
         reflector = float(m.group(1))
+    if a.piston_face is None:
+        m = re.search(r"piston\s*\{[^}]*?max\s*\(\s*([-+0-9.eE]+)", geometry)
+        if not m:
+            sys.exit("constant/geometry: no wall 'piston' with a 'max': give --piston-face")
+        a.piston_face = float(m.group(1))
     omega = 2 * math.pi / T
     k = wave_number(omega, d)
     kd = k * d
