@@ -45,10 +45,13 @@ def state(path, d):
     the outline's largest over its smallest radius: the farthest particle in each of 36 sectors
     (2D) or 100 cones about evenly spread directions (3D), each particle in the sector of the
     direction nearest its own (sqrt(2) for a square, sqrt(3) for a cube, 1 for a disc or ball)."""
-    x, p = sv.read_vtp(path, "pressure")
-    cohesion = sv.read_polydata(path).GetPointData().GetArray("cohesionPressure")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    data = sv.read_polydata(path)
+    if data.GetPointData().GetArray("pressure") is None:
+        sys.exit("%s has no point array 'pressure'" % path)
+    x, p = vtk_to_numpy(data.GetPoints().GetData()), vtk_to_numpy(data.GetPointData().GetArray("pressure"))
+    cohesion = data.GetPointData().GetArray("cohesionPressure")
     if cohesion is not None:  # akinci2013: the mechanical pressure is p plus the cohesion's own
-        from vtkmodules.util.numpy_support import vtk_to_numpy
         p = p + vtk_to_numpy(cohesion)
     x = x[:, :d]
     r = x - x.mean(axis=0)

@@ -42,16 +42,15 @@ using namespace spindrift;
 
 // Akinci's cohesion spline C(r) and adhesion spline A(r), for support h in d dimensions.
 struct AkinciSplines {
-    Scalar h, cohesionScale, adhesionScale;
+    Scalar h, cohesionScale, adhesionScale, core; // core: h⁶/64
     AkinciSplines(Scalar support, int d)
         : h(support),
           cohesionScale(Scalar((d == 3 ? 32 / std::numbers::pi : cohesion2D) / std::pow(double(support), d + 6))),
-          adhesionScale(Scalar(0.007 / std::pow(double(support), d + 0.25))) {}
+          adhesionScale(Scalar(0.007 / std::pow(double(support), d + 0.25))), core(Scalar(std::pow(double(support), 6) / 64)) {}
     Scalar cohesion(Scalar r) const {
         if (!(r > 0) || r > h) return 0;
         const Scalar c = (h - r) * (h - r) * (h - r) * r * r * r;
-        const Scalar h6 = h * h * h * h * h * h;
-        return cohesionScale * (2 * r > h ? c : 2 * c - h6 / 64);
+        return cohesionScale * (2 * r > h ? c : 2 * c - core);
     }
     Scalar adhesion(Scalar r) const {
         if (2 * r <= h || r > h) return 0;
@@ -71,8 +70,8 @@ struct AkinciSplines {
     }();
 };
 
-// n_i = h Σ_j V_j ∇_i W_ij over the fluid (Akinci's normal: it points into the fluid, |n| ≈ 1 at
-// the surface's outer row, 0 inside)
+// n_i = h Σ_j V_j ∇_i W_ij over the fluid (Akinci's normal: it points into the fluid, of order 1
+// at the surface's outer row, 0 inside)
 struct NormalTerm {
     using Sum = Vec3;
     static constexpr bool usesGradient = true;
