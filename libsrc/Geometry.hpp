@@ -19,8 +19,8 @@
 // container whose size is not a whole number of Δx along an axis is refused (the error gives the
 // nearest valid max), unless its entry says `snapToLattice yes;`: its max is then moved to
 // min + round(size/Δx) Δx (the log says so) and its particles fill it to its faces. Fluid
-// particles inside a solid wall or body, or nearer its surface than half a spacing, are removed
-// (so no fluid particle starts nearer a wall particle than Δx). Fluid regions are filled in file
+// particles inside a solid wall or body, or nearer one of its particles than Δx, are removed: on
+// a slope or a curve the water fills the lattice up to the wall's particles. Fluid regions are filled in file
 // order; a position an earlier region fills is not filled again (OccupiedSpace: overlapping
 // regions are merged, a warning per region says how many positions it shared). A hydrostatic
 // start takes each particle's depth from the free surface above it, over every fluid region: the

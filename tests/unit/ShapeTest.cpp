@@ -194,10 +194,18 @@ TEST(Shape, CurvedWallsAndBodies) {
     }
     // ring of 3 spacings: π (0.1² − 0.07²)
     expectMeasure(double(pillar.positions.size()) * 1e-4, pi * (0.01 - 0.0049), 2 * pi * 0.17, 0.01, "pillar ring");
+    // the water outside both, no particle nearer one of theirs than Δx, and filling the lattice up
+    // to them: its area is the box's less the two circles' to a fraction of a spacing along their
+    // perimeters (−0.0009 m²; a clearance of half a spacing from the surfaces, the rule before,
+    // left the lattice points within it empty: −0.0033 m²)
     for (const Vec3& p : g.fluidPositions) {
-        ASSERT_GE((p - Vec3(0.3, 0.2, 0)).norm(), 0.1 + 0.49 * 0.01 - 1e-9) << "fluid clear of the pillar";
-        ASSERT_GE((p - Vec3(0.7, 0.4, 0)).norm(), 0.08 + 0.49 * 0.01 - 1e-9) << "fluid clear of the disc";
+        ASSERT_GT((p - Vec3(0.3, 0.2, 0)).norm(), 0.1) << "fluid outside the pillar";
+        ASSERT_GT((p - Vec3(0.7, 0.4, 0)).norm(), 0.08) << "fluid outside the disc";
+        for (const SampledWall* solid : {&pillar, &disc})
+            for (const Vec3& q : solid->positions) ASSERT_GE((p - q).norm(), 0.999 * 0.01) << solid->name;
     }
+    const double water = 0.5 - pi * 0.01 - pi * 0.0064, perimeters = 2 * pi * (0.1 + 0.08);
+    EXPECT_NEAR(double(g.fluidPositions.size()) * 1e-4, water, 0.15 * perimeters * 0.01) << "the water's area";
     EXPECT_TRUE(pillar.occupies(Vec3(0.3, 0.2, 0), 2));
     EXPECT_FALSE(pillar.occupies(Vec3(0.3, 0.31, 0), 2));
     // the disc's mass and inertia from its shape: ρ π r², ρ π r⁴ / 2
