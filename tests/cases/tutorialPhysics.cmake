@@ -125,12 +125,14 @@ if(PVPYTHON)
     --volume 0.01)
   set_property(TEST Tutorial.rollingTank3D APPEND PROPERTY ENVIRONMENT "TUTORIAL_CHECK=checkRolling.py --from 1")
   # waveTank2D, quick mode: dx 0.04 instead of 0.02 (H/dx 2.5), the depth 0.52 m (whole spacings)
-  # for the water and the wave maker, and 12 s of 13, the first gauge (2 wavelengths): period
-  # within 1 %, height 0.8-1.05 H (measured with the kernel-corrected pressure gradient the case
-  # uses: 3 waves, T +0.17 %, H 0.0912 m = -8.8 %; the full case at dx 0.02: H +0.8 %, T +0.8 %;
-  # with the plain gradient -41.6 % here and -29 % at dx 0.02, the waves' damping:
-  # validation/standingWave2D, docs/VALIDATION.md)
-  tutorial_physics(waveTank2D waveTank2D "constant/fluidProperties:particleSpacing=0.04,constant/geometry:water.max=(11 0.52 0),constant/geometry:piston.depth=0.52,system/controlDict:endTime=12"
+  # for the water and the wave maker, and 12 s of 21, the first gauge (2 wavelengths): period
+  # within 1 %, height 0.8-1.05 H, nothing through the beach, the volume kept (measured with the
+  # kernel-corrected pressure gradient the case uses: 3 waves, H 0.0935 m = 0.935 H, T +0.22 %,
+  # the deepest centre 0.11 dx inside a face, volume within 0.02 %; the full case at dx 0.02:
+  # H -3.7 % / -2.4 % at 2 / 3 wavelengths, the waves breaking on the beach at h_b 0.16 m,
+  # H_b/h_b 0.69, docs/VALIDATION.md). The breaking is not asserted here: at dx 0.04 the waves
+  # reach the beach's shallows at 0.6 H and do not break as at dx 0.02.
+  tutorial_physics(waveTank2D waveTank2D "constant/fluidProperties:particleSpacing=0.04,constant/geometry:water.max=(18.8 0.52 0),constant/geometry:piston.depth=0.52,system/controlDict:endTime=12"
     --inside --volume 0.01)
   set_property(TEST Tutorial.waveTank2D APPEND PROPERTY ENVIRONMENT
     "TUTORIAL_CHECK=${PROJECT_SOURCE_DIR}/etc/python/checkWaves.py --gauges 0 --height-range 0.8 1.05")
