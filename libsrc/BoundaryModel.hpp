@@ -15,8 +15,14 @@
 #pragma once
 
 #include "Model.hpp"
+#include "PairLoop.hpp"
+#include "Scene.hpp"
 #include "Step.hpp"
 #include "WallCollision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
 
 namespace spindrift {
 
@@ -32,6 +38,55 @@ public:
     }
 
 protected:
+    // Σ_k W_bk over the particles k of every boundary (b's own included) for each particle b of
+    // 'wall': the neighbourhood of Akinci et al.'s (2012) adaptive volume V_b = 1/Σ_k W_bk.
+    static std::vector<Scalar> boundaryKernelSums(const Scene& s, const ParticleSystem& wall) {
+        const auto& kt = s.kernel;
+        std::vector<Scalar> sum(wall.size(), kt.W0());
+        const auto& x = wall.particles.position();
+        for (const ParticleSystem* other : s.boundaries()) {
+            const NeighbourList list = s.search.listBetween(wall.index, other->index);
+            const auto& xl = other->particles.position();
+            forEachIndex(x.size(), [&](std::size_t b) {
+                forEachNeighbour(list, x, xl, b, [&](Index, const Vec3&, Scalar r2) { sum[b] += kt.WSq(r2); });
+            });
+        }
+        return sum;
+    }
+    // A wall's own neighbourhoods: the largest Σ_k W_bk over its particles (the lattice's sum when
+    // the wall covers the support), and whether its particles see their neighbours in a sheet
+    // (a surface sampled in one layer): the second moment C = Σ_k W_bk r_bk ⊗ r_bk of most
+    // neighbourhoods nearly singular, det C < 0.1 (tr C/d)^d (zero where a sheet is flat, 1 for
+    // an isotropic neighbourhood; on a lattice of two layers or more every particle's is far
+    // above 0.1; a sheet's edges and corners, where two faces meet, are not flat).
+    struct Neighbourhood {
+        Scalar fullest = 0;
+        bool sheet = false;
+    };
+    static Neighbourhood ownNeighbourhood(const Scene& s, const ParticleSystem& wall) {
+        const auto& kt = s.kernel;
+        const int dim = s.physics.dimension;
+        const NeighbourList list = s.search.listBetween(wall.index, wall.index);
+        const auto& x = wall.particles.position();
+        std::vector<Scalar> sum(x.size(), kt.W0());
+        std::vector<char> flat(x.size(), 0);
+        forEachIndex(x.size(), [&](std::size_t b) {
+            Eigen::Matrix3d c = Eigen::Matrix3d::Zero();
+            forEachNeighbour(list, x, x, b, [&](Index, const Vec3& r, Scalar r2) {
+                const Scalar W = kt.WSq(r2);
+                sum[b] += W;
+                const Eigen::Vector3d d = r.cast<double>();
+                c += double(W) * d * d.transpose();
+            });
+            const double trace = c.topLeftCorner(dim, dim).trace() / dim;
+            const double det = dim == 3 ? c.determinant() : c.topLeftCorner<2, 2>().determinant();
+            flat[b] = trace > 0 && det < 0.1 * std::pow(trace, dim);
+        });
+        Neighbourhood n;
+        if (!x.empty()) n.fullest = *std::max_element(sum.begin(), sum.end());
+        n.sheet = 2 * std::size_t(std::count(flat.begin(), flat.end(), 1)) > x.size();
+        return n;
+    }
     WallCollision collision_;
 };
 

@@ -10,7 +10,9 @@
 //                    lattice with several layers then give exactly ρ0 next to a wall at rest.
 //   volume auto      (default) per wall system: lattice when the wall is at least a kernel
 //                    support thick (one of its particles has a full neighbourhood of wall
-//                    particles, Σ_k W_bk ≥ 0.95 of the lattice's), else adaptive.
+//                    particles, Σ_k W_bk ≥ 0.95 of the lattice's) and not a sheet (a surface
+//                    sampled in one layer, BoundaryModel::ownNeighbourhood: a Poisson-disk layer
+//                    in 3D sums above the lattice's by its density alone), else adaptive.
 // The adaptive volume is meant for thin walls: on several lattice layers the surface layer's
 // neighbourhood is half empty, so its V_b is about twice Δx^d and the first fluid row starts
 // ~7–9 % above ρ0 (a 47 kPa corner particle in the dam-break tutorial at t = 0, which sprayed the
@@ -42,24 +44,15 @@ public:
 
     void initialise(Scene& s) override {
         collision_.initialise(s);
-        const auto& kt = s.kernel;
         const Scalar rho0 = s.constants.rho0, m = s.constants.particleMass;
         const Scalar latticeSum = rho0 / m; // Σ W over a full lattice neighbourhood (latticeParticleMass)
         const auto boundaries = s.boundaries();
         for (ParticleSystem* wall : boundaries) {
             ParticleSystem& w = *wall;
-            // Σ_k W_bk over the particles of every boundary
-            std::vector<Scalar> sum(w.size(), kt.W0());
-            const auto& x = w.particles.position();
-            for (const ParticleSystem* other : boundaries) {
-                const NeighbourList list = s.search.listBetween(w.index, other->index);
-                const auto& xl = other->particles.position();
-                forEachIndex(x.size(), [&](std::size_t b) {
-                    forEachNeighbour(list, x, xl, b, [&](Index, const Vec3&, Scalar r2) { sum[b] += kt.WSq(r2); });
-                });
-            }
+            const std::vector<Scalar> sum = boundaryKernelSums(s, w);
             const Scalar fullest = w.size() ? *std::max_element(sum.begin(), sum.end()) : Scalar(0);
-            const bool lattice = volume_ == "lattice" || (volume_ == "auto" && fullest >= Scalar(0.95) * latticeSum);
+            const bool lattice = volume_ == "lattice" ||
+                                 (volume_ == "auto" && fullest >= Scalar(0.95) * latticeSum && !ownNeighbourhood(s, w).sheet);
             auto& mass = w.particles.addScalar("wallMass", {true, false});
             for (std::size_t b = 0; b < mass.size(); ++b) mass[b] = lattice ? m : rho0 / sum[b];
             w.mass = &mass;
