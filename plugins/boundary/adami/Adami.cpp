@@ -30,8 +30,9 @@
 // adaptive volume (independent of how densely the layer is sampled), scaled by κ so that a flat
 // layer gives a fluid particle Δx from it (where the water rests against it) the normal kernel
 // gradient Σ_b V_b ∂W/∂n of the lattice wall it stands for (κ from the kernel, once).
-//   volume auto      (default) per wall: lattice when the wall covers the support (a particle
-//                    with a full wall neighbourhood, Σ_k W_bk ≥ 0.95 of the lattice's), else adaptive
+//   volume auto      (default) per wall: adaptive where the wall is a sheet (most of its
+//                    particles' neighbourhoods flat: BoundaryModel::ownNeighbourhood), else
+//                    lattice (M_b = m: lattice walls run as they always did)
 //   volume lattice | adaptive
 //
 //   boundary { type adami; slip no; clampNegativePressure yes; contactDistance 0; volume auto; }
