@@ -103,7 +103,7 @@ def breaking(a, H, T, d, ramp, geometry):
     g = 9.81
     omega = 2 * math.pi / T
     bed = beach_bed(geometry)
-    t, xs, levels, labels = read_gauges(a.breaking)
+    t, xs, levels, _ = read_gauges(a.breaking)
     # the ramped waves' arrival: the group velocity integrated over the still depth from the piston
     def arrival(x, n=400):
         s = np.linspace(a.piston_face, x, n)
@@ -187,11 +187,10 @@ def main():
     cg = group_velocity(omega, d)
     print(f"target H {H} m, T {T} s in d {d} m: L {2 * math.pi / k:.4f} m, kd {kd:.4f}, c_g {cg:.4f} m/s")
 
-    t, _, levels, header = read_gauges("gauges")
+    t, xs, levels, header = read_gauges("gauges")
     ok = True
     for g in a.gauges:
-        label = header[g]
-        xg = float(re.search(r"\(([-+0-9.eE]+)", label).group(1))
+        label, xg = header[g], xs[g]
         t0 = (xg - a.piston_face) / cg + ramp + T
         t1 = (2 * reflector - xg - a.piston_face) / cg
         got = waves(t, levels[:, g], t0, min(t1, t[-1]))
