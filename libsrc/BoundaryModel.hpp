@@ -6,7 +6,8 @@
 // computeDensity), e.g. to extrapolate the boundaries' pressure; a pressure solver that changes
 // a fluid's pressure in its iterations has the core carry the change to the boundaries
 // (StepServices::updateBoundaryPressure, which calls updatePressure). correctAcceleration() runs
-// after the pressure model, when a fluid's accelerations are complete: there every boundary
+// last, after the pressure and shifting models, when a fluid's accelerations and shift are
+// complete: there every boundary
 // model applies the collision of fluid particles that the step would carry into a boundary
 // (WallCollision.hpp, the model dictionary's `collision { }`; on at the faces by default,
 // `collision no;` off) and reports the force that puts on each boundary (addReactions, right

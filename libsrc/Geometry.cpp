@@ -396,7 +396,10 @@ void sampleMeshWall(const Dictionary& w, Scalar dx, int dim, SampledWall& sample
             throw InputError(w.locationOf("spacing"), "'spacing' (the least distance between wall particles, "
                                                       "in particleSpacing) must be within 0.25 to 4 (default 0.5)", "spacing");
         sampled.thickness = Scalar(spacing) * dx;
-        sampled.positions = poissonDiskSurface(*mesh, spacing * double(dx), dim);
+        SurfaceSamples samples = poissonDiskSurface(*mesh, spacing * double(dx), dim);
+        sampled.positions = std::move(samples.positions);
+        sampled.normals = std::move(samples.normals);
+        sampled.surfaceSpacing = Scalar(spacing) * dx;
     } else {
         if (w.found("spacing"))
             throw InputError(w.locationOf("spacing"), "'spacing' is for `sampling poissonDisk` (a lattice wall "

@@ -58,6 +58,10 @@ struct SampledWall {
     std::string name;
     SourceLocation where; // the wall's entry in constant/geometry
     std::vector<Vec3> positions;
+    // A single layer on a surface (`sampling poissonDisk`): the surface's unit normal at each
+    // particle (either orientation), else empty
+    std::vector<Vec3> normals;
+    Scalar surfaceSpacing = 0; // its sampling radius
     const Dictionary* motion = nullptr; // the entry's `motion { }`, read by the caller (Motion::read)
     const Dictionary* body = nullptr;   // a `bodies` entry: the whole entry (rigidBodyFrom reads it)
     // A solid wall's or body's shape (none for a container); [min, max] its bounds.

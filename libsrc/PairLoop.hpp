@@ -86,6 +86,8 @@ struct SourceView {
     const Scalar* rho;
     bool mirrored;             // a boundary whose pressure and density are those of the fluid particle i
     bool moving;               // a boundary whose v is not zero (a wall with a motion, a body)
+    const Vec3* normal;        // a single layer's surface normals (ParticleSystem::surfaceNormal), else null
+    Scalar surfaceSpacing;     // and its sampling radius
 };
 
 inline SourceView viewOf(const ParticleSystem& p) {
@@ -100,7 +102,9 @@ inline SourceView viewOf(const ParticleSystem& p) {
             set.pressure().data(),
             set.density().data(),
             p.pressureMirrored,
-            p.movingBoundary()};
+            p.movingBoundary(),
+            p.surfaceNormal ? p.surfaceNormal->data() : nullptr,
+            p.surfaceSpacing};
 }
 
 // One neighbour as the loop hands it to a term.

@@ -68,6 +68,13 @@ public:
     // wall: a prescribed motion (null: fixed), its particles' positions at displacement zero
     std::unique_ptr<Motion> motion;
     std::vector<Vec3> initialPosition;
+    // wall or body sampled as one layer on a surface (a Poisson-disk mesh wall): the surface's unit
+    // normal at each particle, either orientation (its set's field "surfaceNormal"; null for
+    // lattice walls), turned with the particles; its values at displacement zero (motion) or in
+    // the body frame (body)
+    std::vector<Vec3>* surfaceNormal = nullptr;
+    std::vector<Vec3> initialSurfaceNormal;
+    Scalar surfaceSpacing = 0; // the least distance of its particles (the Poisson-disk radius) [m]
     // body: its rigid-body state, mass properties and constraints; its particles' positions
     // in the body frame are the body's own (RigidBody::place)
     std::unique_ptr<RigidBody> body;

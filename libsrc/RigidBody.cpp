@@ -129,6 +129,11 @@ void RigidBody::attach(ParticleSystem& system) const {
     system.initialPosition.resize(x.size());
     for (std::size_t b = 0; b < x.size(); ++b)
         system.initialPosition[b] = (Rt * (x[b].cast<double>() - state_.position)).cast<Scalar>();
+    if (system.surfaceNormal) {
+        system.initialSurfaceNormal.resize(x.size());
+        for (std::size_t b = 0; b < x.size(); ++b)
+            system.initialSurfaceNormal[b] = (Rt * (*system.surfaceNormal)[b].cast<double>()).cast<Scalar>();
+    }
 }
 
 void RigidBody::place(ParticleSystem& system) const {
@@ -145,6 +150,10 @@ void RigidBody::place(ParticleSystem& system) const {
         v[b] = (V + w.cross(r)).cast<Scalar>();
         a[b] = (A + alpha.cross(r) + w.cross(w.cross(r))).cast<Scalar>();
     });
+    if (system.surfaceNormal) {
+        const auto& n0 = system.initialSurfaceNormal;
+        forEachIndex(x.size(), [&](std::size_t b) { (*system.surfaceNormal)[b] = (R * n0[b].cast<double>()).cast<Scalar>(); });
+    }
 }
 
 void RigidBody::advance(double dt, const V3& force, const V3& moment, const V3& gravity) {

@@ -2,7 +2,8 @@
 // particles with a velocity slightly other than their own, v + δv, to keep the particle
 // distribution regular (Lind et al. 2012, Sun et al. 2017, Adami et al. 2013). sphSchemes
 // `shifting { type ...; }`. The core calls computeShift() at the end of every evaluation, after
-// the accelerations; the model writes δv to the fluid field `shiftingVelocity`
+// the accelerations and before the boundaries' collision (which has the last word on where a
+// particle goes: BoundaryModel.hpp); the model writes δv to the fluid field `shiftingVelocity`
 // (Scene::shiftingVelocity), which the integrators add in their drift (advectionVelocity in
 // Integrator.hpp). A model may also add to the accelerations (the transport-velocity
 // formulation's extra stress) in the same call.

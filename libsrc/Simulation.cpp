@@ -409,6 +409,11 @@ void Simulation::buildParticles() {
             wallLo = wallLo.cwiseMin(sampled.positions[i]);
             wallHi = wallHi.cwiseMax(sampled.positions[i]);
         }
+        if (!sampled.normals.empty()) {
+            w.surfaceNormal = &set.addVector("surfaceNormal", {.output = false, .scratch = true});
+            *w.surfaceNormal = sampled.normals;
+            w.surfaceSpacing = sampled.surfaceSpacing;
+        }
         if (sampled.body) {
             w.body = std::make_unique<RigidBody>(
                 RigidBody::read(*sampled.body, sampled.mass.volume, sampled.mass.centroid, sampled.mass.inertia,
@@ -498,7 +503,10 @@ void Simulation::buildParticles() {
     scene_.search.setup(h, physics.dimension, domainMin_, domainMax_, periodic_);
     for (ParticleSystem* w : scene_.boundaries()) {
         w->particles.permute(scene_.search.sortOrder(w->particles.position())); // cache order
-        if (w->motion) w->initialPosition = w->particles.position();
+        if (w->motion) {
+            w->initialPosition = w->particles.position();
+            if (w->surfaceNormal) w->initialSurfaceNormal = *w->surfaceNormal;
+        }
         if (w->body) {
             w->body->attach(*w); // its particles' positions in the body frame
             w->body->place(*w);

@@ -48,9 +48,13 @@ using V = TriangleMesh::V;
 
 Vec3 toScalar(const V& v, int dim) { return Vec3(Scalar(v[0]), Scalar(v[1]), dim == 3 ? Scalar(v[2]) : Scalar(0)); }
 
-// The segments of the mesh's section by z = 0 (a vertex on the plane counts as above it).
-std::vector<std::pair<V, V>> sectionSegments(const TriangleMesh& mesh) {
-    std::vector<std::pair<V, V>> segments;
+// The segments of the mesh's section by z = 0 (a vertex on the plane counts as above it), each
+// with its triangle's normal in the plane.
+struct SectionSegment {
+    V a, b, normal;
+};
+std::vector<SectionSegment> sectionSegments(const TriangleMesh& mesh) {
+    std::vector<SectionSegment> segments;
     const auto& x = mesh.vertices();
     for (const auto& t : mesh.triangles()) {
         V ends[2];
@@ -63,15 +67,19 @@ std::vector<std::pair<V, V>> sectionSegments(const TriangleMesh& mesh) {
             const double s = a[2] / (a[2] - b[2]);
             if (n < 2) ends[n++] = a + s * (b - a);
         }
-        if (n == 2) segments.emplace_back(ends[0], ends[1]);
+        const V normal = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+        if (n == 2) segments.push_back({ends[0], ends[1], V(normal[0], normal[1], 0).normalized()});
     }
     return segments;
 }
 } // namespace
 
-std::vector<Vec3> poissonDiskSurface(const TriangleMesh& mesh, double r, int dim, std::uint32_t seed) {
+SurfaceSamples poissonDiskSurface(const TriangleMesh& mesh, double r, int dim, std::uint32_t seed) {
     std::mt19937_64 random(seed);
-    std::vector<V> candidates;
+    struct Candidate {
+        V point, normal;
+    };
+    std::vector<Candidate> candidates;
     if (dim == 3) {
         // each triangle's points a + (i ab + j ac)/n, i + j ≤ n, n from its longest edge: no point of
         // it farther than step/√3 from a candidate
@@ -79,27 +87,30 @@ std::vector<Vec3> poissonDiskSurface(const TriangleMesh& mesh, double r, int dim
         const auto& x = mesh.vertices();
         for (const auto& t : mesh.triangles()) {
             const V a = x[t[0]], ab = x[t[1]] - a, ac = x[t[2]] - a;
+            const V normal = ab.cross(ac).normalized();
             const double longest = std::max({ab.norm(), ac.norm(), (ac - ab).norm()});
             const long n = std::max(1L, long(std::ceil(longest / step)));
             for (long i = 0; i <= n; ++i)
-                for (long j = 0; i + j <= n; ++j) candidates.push_back(a + (double(i) * ab + double(j) * ac) / double(n));
+                for (long j = 0; i + j <= n; ++j)
+                    candidates.push_back({a + (double(i) * ab + double(j) * ac) / double(n), normal});
         }
     } else {
         const double step = r / 20;
-        for (const auto& [a, b] : sectionSegments(mesh)) {
+        for (const auto& [a, b, normal] : sectionSegments(mesh)) {
             const double length = (b - a).norm();
             const long n = std::max(1L, long(std::ceil(length / step)));
-            for (long k = 0; k <= n; ++k) candidates.push_back(a + (double(k) / double(n)) * (b - a));
+            for (long k = 0; k <= n; ++k) candidates.push_back({a + (double(k) / double(n)) * (b - a), normal});
         }
     }
     std::shuffle(candidates.begin(), candidates.end(), random);
     PointGrid kept(r, dim);
-    std::vector<Vec3> samples;
-    for (const V& c : candidates) {
-        const Vec3 p = toScalar(c, dim);
+    SurfaceSamples samples;
+    for (const Candidate& c : candidates) {
+        const Vec3 p = toScalar(c.point, dim);
         if (kept.anyWithin(p, r)) continue;
         kept.add(p);
-        samples.push_back(p);
+        samples.positions.push_back(p);
+        samples.normals.push_back(toScalar(c.normal, dim));
     }
     return samples;
 }

@@ -26,7 +26,13 @@
 
 namespace spindrift {
 
-std::vector<Vec3> poissonDiskSurface(const TriangleMesh& mesh, double radius, int dim, std::uint32_t seed = 2012);
+// The samples and the unit normal of the face each lies on (the triangle's; in 2D the section
+// segment's, in the plane): the collision with a single layer reads its surface from them
+// (WallCollision.hpp).
+struct SurfaceSamples {
+    std::vector<Vec3> positions, normals;
+};
+SurfaceSamples poissonDiskSurface(const TriangleMesh& mesh, double radius, int dim, std::uint32_t seed = 2012);
 
 // Lattice points of spacing dx (the case's lattice) within 'thickness' of the surface, inside the
 // mesh or (outside = true) outside it. The mesh must be prepared.

@@ -87,6 +87,10 @@ void Simulation::placeMovingWalls(double time) {
             v[b] = m.velocityAt(st, xb).cast<Scalar>();
             a[b] = m.accelerationAt(st, xb).cast<Scalar>();
         });
+        if (w->surfaceNormal) {
+            const auto& n0 = w->initialSurfaceNormal;
+            forEachIndex(x.size(), [&](std::size_t b) { (*w->surfaceNormal)[b] = (st.rotation * n0[b].cast<double>()).cast<Scalar>(); });
+        }
     }
 }
 
@@ -139,10 +143,12 @@ void Simulation::evaluate(double time, Scalar dt) {
         if (surfaceTension_ && wantReactions) surfaceTension_->addReactions(s, *f, step, reactions);
         pressure_->addPressureAcceleration(s, *f, step);
         if (wantReactions) pressure_->addReactions(s, *f, step, reactions);
-        if (boundaryModel_) boundaryModel_->correctAcceleration(s, *f, step);
-        if (boundaryModel_ && wantReactions) boundaryModel_->addReactions(s, *f, step, reactions);
         if (shifting_) shifting_->computeShift(s, *f, step);
         if (shifting_ && wantReactions) shifting_->addReactions(s, *f, step, reactions);
+        // last: the collision with the boundaries has the final word on where the step takes a
+        // particle (a shift or a particle collision would otherwise push it into a wall)
+        if (boundaryModel_) boundaryModel_->correctAcceleration(s, *f, step);
+        if (boundaryModel_ && wantReactions) boundaryModel_->addReactions(s, *f, step, reactions);
     }
 }
 

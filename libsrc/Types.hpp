@@ -18,8 +18,9 @@ using Index = std::uint32_t;
 
 // Bumped whenever a header a plugin compiles against changes its layout or virtual interface
 // (2: the plugin's kind from its base class, the ABI tag below; 3: particle systems as peers, Step;
-// 4: BoundaryModel::correctAcceleration and addReactions, adami's contact; 5: Motion a rigid transform).
-inline constexpr std::uint32_t pluginInterfaceVersion = 5;
+// 4: BoundaryModel::correctAcceleration and addReactions, adami's contact; 5: Motion a rigid transform;
+// 6: a single layer's surface normals in ParticleSystem and SourceView).
+inline constexpr std::uint32_t pluginInterfaceVersion = 6;
 
 // What a plugin must share with the core to be called: exported by every plugin (Plugin.hpp)
 // and compared by the ModelRegistry before anything in the library is used. A plugin built for

@@ -1,8 +1,9 @@
 // Spindrift — the collision of fluid particles with the boundaries (walls and bodies), written once
 // for every boundary model (BoundaryModel's collision_): a fluid particle whose position at the end of
-// the step, x* = x + Δt (v + Δt a) (symplectic Euler's), would be nearer a boundary's face than
+// the step, x* = x + Δt (v + Δt a + δv) (symplectic Euler's; δv a shifting model's, computed before
+// it), would be nearer a boundary's face than
 // `distance` Δx (0: would cross the face) and moves towards it, relative to the boundary's own
-// velocity v_w, has that velocity u = v + Δt a − v_w changed as by a collision with restitution e
+// velocity v_w, has that velocity u = v + Δt a + δv − v_w changed as by a collision with restitution e
 // and Coulomb friction μ:
 //   u_n = u·n < 0:   Δu = −(1 + e) u_n n − min(1, μ (1 + e) |u_n| / |u_t|) u_t,   u_t = u − u_n n,
 //   a_i += Δu/Δt
@@ -16,6 +17,9 @@
 // v_w = Σ_b M_b W v_b / Σ_b M_b W. A particle at rest sits 0.5Δx from the face, so `distance`
 // is in [0, 0.5]. The boundaries take −m Δu/Δt in all (ForceKind::other), shared over the
 // boundary particles of i's normal in proportion to M_b ∇W_ib · Σ_b M_b ∇W_ib / |Σ_b M_b ∇W_ib|².
+// A single layer on a surface (a Poisson-disk mesh wall, whose particles carry the surface's
+// normal) is read from the surface itself: its face lies a quarter spacing in front of the layer,
+// crossed where x* passes it within a particle's footprint on the layer (Term, below).
 //
 // On by default with distance 0, e = 0, μ = 0: no particle centre is carried past a face (issue 35:
 // the incompressible solvers' surge ran 0.5-1.1Δx into the Colagrossi tank's walls, wcsph's 0.8Δx;
@@ -28,7 +32,10 @@
 #include "PairLoop.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace spindrift {
@@ -76,23 +83,50 @@ public:
         auto& a = fluid.particles.acceleration();
         predicted_.resize(n);
         change_.assign(n, Vec3::Zero());
+        shareChange_.resize(n);
         share_.resize(n);
-        forEachIndex(n, [&](std::size_t i) { predicted_[i] = x[i] + dt * (v[i] + dt * a[i]); });
+        const auto boundaries = s.boundaries();
+        const bool sheets = std::any_of(boundaries.begin(), boundaries.end(),
+                                        [](const ParticleSystem* b) { return b->surfaceNormal != nullptr; });
+        if (sheets) hits_.assign(n, {});
+        else hits_.clear();
+        // the drift of the step: v + Δt a, and a shifting model's δv (computed before this)
+        const std::vector<Vec3>* shift = fluid.particles.findVector("shiftingVelocity");
+        const auto drift = [&](std::size_t i) { return shift ? Vec3((*shift)[i]) : Vec3(Vec3::Zero()); };
+        forEachIndex(n, [&](std::size_t i) { predicted_[i] = x[i] + dt * (v[i] + dt * a[i] + drift(i)); });
         const Scalar limit = limit_, invDt = 1 / dt, e = Scalar(restitution_), mu = Scalar(friction_);
-        forEachPairSum(s, fluid, predicted_, Term{&s.kernel, dt}, [&](std::size_t i, const auto&, const Term::Sum& c) {
-            const Scalar length2 = c.gradient.squaredNorm();
-            if (c.density < limit || !(length2 > 0)) return;
-            const Vec3 normal = -c.gradient / std::sqrt(length2);
-            const Vec3 relative = v[i] + dt * a[i] - c.momentum / c.density;
-            const Scalar approach = relative.dot(normal);
-            if (!(approach < 0)) return;
-            Vec3 du = -((1 + e) * approach) * normal;
-            const Vec3 slide = relative - approach * normal;
-            const Scalar slideSpeed = slide.norm();
-            if (mu > 0 && slideSpeed > 0) du -= std::min(Scalar(1), mu * (1 + e) * -approach / slideSpeed) * slide;
-            change_[i] = invDt * du;
+        const Term term{&s.kernel, dt, Scalar(sheetFace + distance_) * s.physics.particleSpacing, x.data(),
+                        predicted_.data()};
+        forEachPairSum(s, fluid, predicted_, term, [&](std::size_t i, const auto&, const Term::Sum& c) {
+            // the faces the step would cross (or come nearer than 'distance'): the one the boundaries'
+            // share tells, and those of the sheets hit (up to three, a corner's)
+            const bool byShare = c.sheets == 0 && c.density >= limit && c.gradient.squaredNorm() > 0;
+            if (!byShare && c.sheets == 0) return;
+            const Vec3 shareNormal = byShare ? Vec3(-c.gradient.normalized()) : Vec3(Vec3::Zero());
+            const Vec3 shareVelocity = byShare ? Vec3(c.momentum / c.density) : Vec3(Vec3::Zero());
+            const Vec3 u0 = v[i] + dt * a[i] + drift(i);
+            Vec3 u = u0, shareChange = Vec3::Zero();
+            // each face's response in turn; a second sweep stops what the first left approaching
+            // another face of a corner
+            for (int sweep = 0; sweep < 2; ++sweep) {
+                const Scalar es = sweep == 0 ? e : Scalar(0), mus = sweep == 0 ? mu : Scalar(0);
+                if (byShare) shareChange += response(u, shareNormal, shareVelocity, es, mus);
+                for (int k = 0; k < c.sheets; ++k)
+                    hits_[i][std::size_t(k)].change += response(u, c.sheet[k].normal, c.sheet[k].velocity, es, mus);
+            }
+            if (u == u0) return;
+            change_[i] = invDt * (u - u0);
             a[i] += change_[i];
-            share_[i] = c.gradient / length2; // M_b ∇W_ib · this: boundary particle b's share (Σ = 1)
+            // who takes the reaction: of the share's face's part the boundary particles b in
+            // proportion to M_b ∇W_ib · share_ (Σ = 1), of each sheet's the particle hit
+            shareChange_[i] = invDt * shareChange;
+            share_[i] = byShare ? Vec3(c.gradient / c.gradient.squaredNorm()) : Vec3(Vec3::Zero());
+            for (int k = 0; k < c.sheets; ++k) {
+                SheetHit& hit = hits_[i][std::size_t(k)];
+                hit.system = c.sheet[k].system;
+                hit.particle = c.sheet[k].particle;
+                hit.change *= invDt;
+            }
         });
         touched_ = parallelAny(n, [&](std::size_t i) { return change_[i] != Vec3::Zero(); });
     }
@@ -102,7 +136,11 @@ public:
         if (!touched_) return;
         spindrift::addReactions(s, fluid, predicted_, ReactionTerm{}, [&](std::size_t i, std::size_t, const WallPair& q) {
             if (change_[i] == Vec3::Zero()) return Vec3(Vec3::Zero());
-            return Vec3(kernelAtEnd(s.kernel, q, dt).gradient.dot(share_[i]) * change_[i]);
+            Vec3 reaction = kernelAtEnd(s.kernel, q, dt).gradient.dot(share_[i]) * shareChange_[i];
+            if (q.src.normal)
+                for (const SheetHit& hit : hits_[i])
+                    if (hit.system == q.src.system && hit.particle == q.j) reaction += hit.change;
+            return reaction;
         }, ForceKind::other, r);
     }
 
@@ -123,6 +161,20 @@ public:
     }
 
 private:
+    // The collision of velocity u with a face of normal n moving at w (above): u changed, the
+    // change returned (zero when u does not approach it).
+    static Vec3 response(Vec3& u, const Vec3& n, const Vec3& w, Scalar e, Scalar mu) {
+        const Vec3 relative = u - w;
+        const Scalar approach = relative.dot(n);
+        if (!(approach < 0)) return Vec3::Zero();
+        Vec3 du = -((1 + e) * approach) * n;
+        const Vec3 slide = relative - approach * n;
+        const Scalar slideSpeed = slide.norm();
+        if (mu > 0 && slideSpeed > 0) du -= std::min(Scalar(1), mu * (1 + e) * -approach / slideSpeed) * slide;
+        u += du;
+        return du;
+    }
+
     // M_b ∇W_ib and M_b W_ib with boundary particle b where its own velocity takes it over the step.
     struct KernelAtEnd {
         Vec3 gradient;
@@ -140,22 +192,80 @@ private:
     // share of its density (a smooth function of the distance to a face: about ρ0/2 at the face of
     // a flat wall), Σ_b M_b ∇W_ib (smooth along a flat wall: a particle sliding along it is not
     // braked by the bumps of its particles) and their mass-weighted velocity.
+    // A single layer on a surface (boundary particles with surface normals, ParticleSystem::
+    // surfaceNormal) is a sheet: its share peaks on the layer and its gradient vanishes there
+    // (and near a corner points along the other faces), so they tell neither the distance nor the
+    // side. Each of its particles b stands instead for the piece of surface around it: its
+    // tangent plane within a footprint of radius 2.1 r (r the Poisson-disk radius: every point of
+    // the surface lies within 1.06 r of a sample, but near an edge that sample may be one of the
+    // next face, whose own keep a face's up to r from the edge: twice that). The particle hits
+    // the sheet where x* comes within a footprint nearer the layer's plane than its face,
+    // 'sheetFace' in front of it, and 'distance', from the side x_i is on (water on either side of
+    // a baffle stays on its side): the deepest such hit of each face (up to a corner's three)
+    // gives its normal (n_b, turned to x_i's side), the surface's velocity and the particle that
+    // takes the reaction. Where a sheet is hit, its faces alone: the share's normal is tilted
+    // near a sheet, and the two together would hold a particle sliding down the face.
+    static constexpr std::size_t noContact = std::size_t(-1);
+    // [Δx] in front of the layer. The layer stands for the first layer of a lattice wall (its
+    // adaptive volume is made so; the fill keeps the fluid a spacing from it), whose face lies half
+    // a spacing in front; but its own pressure holds water at rest nearer (0.33 Δx in the corners
+    // of a 2D tank, MeshTest), and the face only has to catch what the pressure lets through.
+    static constexpr double sheetFace = 0.25;
+    static constexpr int maxSheetContacts = 3; // a corner's faces
+    struct SheetContact {
+        Scalar depth = 0; // (x*_i − x*_b)·n_b − (face + distance), < 0
+        Vec3 normal = Vec3::Zero(), velocity = Vec3::Zero();
+        std::size_t system = noContact;
+        Index particle = 0;
+    };
+    struct SheetHit {
+        std::size_t system = noContact;
+        Index particle = 0;
+        Vec3 change = Vec3::Zero(); // its part of Δa
+    };
     struct Term {
         struct Sum {
-            Scalar density = 0;
+            Scalar density = 0; // the boundaries' share, its gradient and momentum
             Vec3 gradient = Vec3::Zero(), momentum = Vec3::Zero();
+            // the deepest hit of each face (normals more than ~25° apart), up to a corner's three
+            SheetContact sheet[maxSheetContacts];
+            int sheets = 0;
         };
         static constexpr bool visitsFluid = false;
         static constexpr bool usesGradient = true, usesKernel = true;
-        struct Particle {};
+        using Particle = Vec3; // the step's displacement x*_i − x_i
         const KernelTable* kernel;
-        Scalar dt;
-        Particle particle(std::size_t) const { return {}; }
-        void wall(const Particle&, const WallPair& q, Sum& sum) const {
+        Scalar dt, distance;
+        const Vec3* x;
+        const Vec3* predicted;
+        Particle particle(std::size_t i) const { return predicted[i] - x[i]; }
+        void wall(const Particle& move, const WallPair& q, Sum& sum) const {
             const KernelAtEnd k = kernelAtEnd(*kernel, q, dt);
             sum.density += k.W;
             sum.gradient += k.gradient;
             if (q.src.moving) sum.momentum += k.W * q.src.v[q.j];
+            if (!q.src.normal) return;
+            const Vec3& n = q.src.normal[q.j];
+            const Vec3 end = q.src.moving ? Vec3(q.r - dt * q.src.v[q.j]) : q.r; // x*_i − x*_b
+            const Scalar side = (q.r - move).dot(n) >= 0 ? Scalar(1) : Scalar(-1); // of x_i − x_b
+            const Scalar depth = side * end.dot(n) - distance;
+            if (!(depth < 0)) return;
+            const Scalar footprint = Scalar(2.1) * q.src.surfaceSpacing;
+            if ((end - end.dot(n) * n).squaredNorm() > footprint * footprint) return;
+            const SheetContact hit{depth, side * n, q.src.moving ? q.src.v[q.j] : Vec3(Vec3::Zero()), q.src.system, q.j};
+            // the face of one already hit: the deeper of the two; else a face more, or in place of
+            // the shallowest when three are held
+            int slot = -1;
+            for (int k = 0; k < sum.sheets; ++k)
+                if (sum.sheet[k].normal.dot(hit.normal) > Scalar(0.9)) slot = k;
+            if (slot < 0 && sum.sheets < maxSheetContacts) {
+                sum.sheet[sum.sheets++] = hit;
+                return;
+            }
+            if (slot < 0)
+                for (int k = 0; k < sum.sheets; ++k)
+                    if (slot < 0 || sum.sheet[k].depth > sum.sheet[slot].depth) slot = k;
+            if (hit.depth < sum.sheet[slot].depth) sum.sheet[slot] = hit;
         }
     };
     // The pairs of the reactions (addReactions reads only its kernel needs).
@@ -169,7 +279,8 @@ private:
     double distance_ = 0, restitution_ = 0, friction_ = 0;
     Scalar limit_ = 0; // ρ_c
     // the last apply(): the predicted positions, each particle's Δa and its shares' vector
-    std::vector<Vec3> predicted_, change_, share_;
+    std::vector<Vec3> predicted_, change_, shareChange_, share_;
+    std::vector<std::array<SheetHit, maxSheetContacts>> hits_; // (when a boundary is a sheet)
     bool touched_ = false;
 };
 

@@ -100,6 +100,78 @@ TEST(WallCollision, ByDefaultEveryBoundaryModelStopsACrossing) {
     }
 }
 
+// A single layer on a surface (a Poisson-disk mesh wall): its particles carry the surface's
+// normal, and the collision reads the surface from them, not from the layer's share (which
+// peaks on the layer and, near a corner, points along the other faces: a 3D tank let a particle
+// through its floor).
+struct Sheet {
+    Scene s;
+    std::unique_ptr<Kernel> kernel;
+    std::unique_ptr<BoundaryModel> boundary;
+    // the layer y = 0 of particles 0.5 dx apart (normals alternately up and down: either
+    // orientation), one fluid particle 'height' dx above it (below: negative) with velocity v,
+    // placed so that the step takes it to x = 0.1 dx
+    Sheet(const std::string& dict, double height, const Vec3& v) {
+        s.physics = test::physicsFor(2, 0.01, 2.6);
+        kernel = test::createModel<Kernel>("type wendlandC2;", s.physics);
+        const double dx = s.physics.particleSpacing;
+        test::fillLattice(s, *kernel, Vec3::Zero(), Vec3(dx, dx, 0));
+        ParticleSystem& fluid = test::fluidOf(s);
+        fluid.particles.position()[0] = Vec3(Scalar(0.1 * dx) - dt * v[0], Scalar(height * dx), 0);
+        fluid.particles.velocity()[0] = v;
+        fluid.particles.acceleration()[0] = Vec3::Zero();
+        std::vector<Vec3> layer, normals;
+        for (int i = -20; i <= 20; ++i) {
+            layer.emplace_back(Scalar(i * 0.5 * dx), 0, 0);
+            normals.emplace_back(0, i % 2 ? 1 : -1, 0);
+        }
+        ParticleSystem& sheet = test::addWallSystem(s, "sheet", layer);
+        sheet.surfaceNormal = &sheet.particles.addVector("surfaceNormal", {.output = false, .scratch = true});
+        *sheet.surfaceNormal = normals;
+        sheet.surfaceSpacing = Scalar(0.5 * dx);
+        test::rebuild(s);
+        boundary = test::createModel<BoundaryModel>(dict, s.physics);
+        boundary->initialise(s);
+        s.reactions.want(sheet.index);
+    }
+    Vec3 velocityAfter() {
+        ParticleSystem& fluid = test::fluidOf(s);
+        const Step step = test::stepOf(s, dt);
+        boundary->correctAcceleration(s, fluid, step);
+        s.reactions.clear();
+        boundary->addReactions(s, fluid, step, s.reactions);
+        return fluid.particles.velocity()[0] + dt * fluid.particles.acceleration()[0];
+    }
+};
+
+TEST(WallCollision, ASingleLayerKeepsParticlesOnTheirSide) {
+    // its face lies a quarter spacing in front of the layer
+    for (const char* model : {"type adami;", "type akinci;", "type adami; collision { restitution 0.5; }"}) {
+        const double e = std::string(model).find("restitution") != std::string::npos ? 0.5 : 0;
+        for (const double side : {1.0, -1.0}) {
+            // 0.35 dx from the layer, crossing its face in the step (0.2 dx at 1 m/s), sliding at 1 m/s
+            Sheet f(model, 0.35 * side, Vec3(1, Scalar(-side), 0));
+            const Vec3 v = f.velocityAfter();
+            EXPECT_NEAR(v[1], e * side, tolerance) << model << " side " << side;
+            EXPECT_NEAR(v[0], 1.0, tolerance) << model << " side " << side;
+            // the layer takes the reaction: −m Δv/Δt
+            const ParticleSystem& fluid = test::fluidOf(f.s);
+            const double m = double(fluid.particles.particleMass());
+            const Wrench w = f.s.reactions.total(f.s.systems.back()->index);
+            EXPECT_NEAR(w.force[1], -m * (v[1] + side) / double(dt), 1e-9 * m / double(dt)) << model;
+            EXPECT_NEAR(w.force[0], 0, 1e-9 * m / double(dt)) << model;
+        }
+    }
+    // clear of it (ends 1.1 dx from the layer), or moving away: untouched
+    Sheet clear("type adami;", 1.2, Vec3(1, -0.5, 0));
+    EXPECT_EQ(clear.velocityAfter(), Vec3(1, -0.5, 0));
+    Sheet leaving("type adami;", -0.2, Vec3(1, -1, 0));
+    EXPECT_EQ(leaving.velocityAfter(), Vec3(1, -1, 0));
+    // ending 0.7 dx from it: 'distance 0.5' (0.75 dx) stops the approach
+    Sheet contact("type adami; collision { distance 0.5; }", 0.8, Vec3(1, -0.5, 0));
+    EXPECT_NEAR(contact.velocityAfter()[1], 0.0, tolerance);
+}
+
 TEST(WallCollision, BadOptionsAreRefusedWithTheirKeyword) {
     const auto physics = test::physicsFor(2);
     for (const char* bad : {"collision { restitution 1.5; }", "collision { friction -1; }", "collision { distance 0.7; }",
