@@ -585,6 +585,11 @@ void Simulation::readRunControls(const Dictionary& control) {
     if (!(blowUpDensityError_ > 0))
         throw InputError(control.locationOf("blowUpDensityError"), "blowUpDensityError must be positive",
                          "blowUpDensityError");
+    removeOutside_ = control.getWordOrDefault("onParticleOutside", {"remove", "stop"}, "remove") == "remove";
+    maxRemovedFraction_ = control.getOrDefault<double>("maxRemovedFraction", 0.01);
+    if (!(maxRemovedFraction_ >= 0 && maxRemovedFraction_ <= 1))
+        throw InputError(control.locationOf("maxRemovedFraction"), "maxRemovedFraction must be between 0 and 1",
+                         "maxRemovedFraction");
     logInterval_ = control.found("logInterval") ? control.get<int>("logInterval") : 0; // 0: automatic (run())
     if (control.found("logInterval") && logInterval_ < 1)
         throw InputError(control.locationOf("logInterval"),

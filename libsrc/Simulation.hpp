@@ -25,6 +25,7 @@ struct RunSummary {
     int writes = 0;
     double maxDensityError = 0;     // max over the run of max_i (ρ_i − ρ0)/ρ0 (the step line's rhoErr max)
     double averageIterations = 0;   // of an iterative pressure solver
+    std::size_t removedParticles = 0; // fluid particles that left the domain (onParticleOutside remove)
 };
 
 // Mass of a fluid particle such that a particle with a full neighbourhood on the initial
@@ -151,6 +152,10 @@ private:
     // tells that it is a density error (measured at the state before the last step).
     std::string findBlowUp(bool& densityOnly) const;
     std::string findBlowUp(const ParticleSystem& system, bool& densityOnly) const;
+    // Removes the fluid particles beyond the domain (blowUpMin_, blowUpMax_; an open tank's
+    // spill) with a log line, unless that would take the run's removals past maxRemovedFraction_
+    // of the fluid (then they stay, and findBlowUp reports them). Returns how many it removed.
+    std::size_t removeParticlesOutside();
     void checkWritable() const;
     // Every name in controlDict's writeFields is a field of some system (a misspelt one would
     // silently never be written).
@@ -197,7 +202,10 @@ private:
     std::vector<Scalar> initialPressures_; // of the fluid particles, where their block gives it as an expression
     ParticleSystem* fluid_ = nullptr;   // the fluid system constant/geometry's fluid blocks make
     Vec3 domainMin_, domainMax_;   // of the neighbour grid
-    Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has blown up
+    Vec3 blowUpMin_, blowUpMax_;   // a particle beyond this box has left the domain
+    bool removeOutside_ = true;    // onParticleOutside remove (else stop: a blow-up)
+    double maxRemovedFraction_ = 0.01;
+    std::size_t removedParticles_ = 0, fluidAtStart_ = 0; // this run's
     Periodicity periodic_;
     double listsBoundaryTime_ = std::numeric_limits<double>::quiet_NaN(); // where the boundaries were when the lists were made (NaN: bodies moved since)
     bool restarted_ = false;

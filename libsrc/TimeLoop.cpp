@@ -231,6 +231,52 @@ std::string Simulation::findBlowUp(bool& densityOnly) const {
     return worst;
 }
 
+std::size_t Simulation::removeParticlesOutside() {
+    const int dim = scene_.physics.dimension;
+    std::size_t removedNow = 0;
+    for (ParticleSystem* f : scene_.ofRole(SystemRole::fluid)) {
+        ParticleSet& set = f->particles;
+        const auto& x = set.position();
+        const std::size_t n = f->ownedSize();
+        // (a position that is not finite is not outside: the blow-up check reports it)
+        const auto outside = [&](std::size_t i) {
+            bool out = false;
+            for (int d = 0; d < dim; ++d)
+                out |= !periodic_.axis[d] && (x[i][d] < blowUpMin_[d] || x[i][d] > blowUpMax_[d]);
+            return out;
+        };
+        if (!parallelAny(n, outside)) continue;
+        // the rest in their order, its ghosts after them, the removed last
+        std::vector<Index> order, gone;
+        order.reserve(set.size());
+        for (std::size_t i = 0; i < n; ++i) (outside(i) ? gone : order).push_back(Index(i));
+        const double allowed = maxRemovedFraction_ * double(fluidAtStart_);
+        if (double(removedParticles_ + removedNow + gone.size()) > allowed) continue; // a blow-up
+        const std::size_t kept = order.size() + f->ghostCount;
+        for (std::size_t i = n; i < set.size(); ++i) order.push_back(Index(i));
+        std::ostringstream m;
+        const std::size_t first = gone.front();
+        m << std::setprecision(6) << "time " << scene_.time << ": removed " << gone.size() << " particle"
+          << (gone.size() > 1 ? "s" : "") << " of " << f->name() << " that left the domain (" << blowUpMin_.transpose()
+          << ") to (" << blowUpMax_.transpose() << ")" << (gone.size() > 1 ? ", the first " : ": ")
+          << "particle " << set.id()[first] << " at (" << x[first].transpose() << ") with velocity ("
+          << set.velocity()[first].transpose() << ")";
+        order.insert(order.end(), gone.begin(), gone.end());
+        set.permute(order);
+        set.resize(kept);
+        scene_.search.positionsChanged(f->index);
+        f->gradients.invalidate();
+        removedNow += gone.size();
+        m << "; " << removedParticles_ + removedNow << " removed in this run, "
+          << 100.0 * double(removedParticles_ + removedNow) / double(std::max<std::size_t>(fluidAtStart_, 1))
+          << " % of the fluid (maxRemovedFraction " << maxRemovedFraction_ << ")";
+        log::warning(m.str());
+    }
+    if (removedNow > 0) ++scene_.stateVersion;
+    removedParticles_ += removedNow;
+    return removedNow;
+}
+
 std::string Simulation::findBlowUp(const ParticleSystem& system, bool& densityOnly) const {
     const auto& f = system.particles;
     const auto& x = f.position();
@@ -291,7 +337,10 @@ std::string Simulation::findBlowUp(const ParticleSystem& system, bool& densityOn
       << v[i].transpose() << ") ";
     if (worstKind == 3) s << "has a value that is not finite (density " << rho[i] << ", pressure " << p[i] << ")";
     else if (worstKind == 2 && v[i].norm() > blowUpSpeed_) s << "moves faster than " << blowUpSpeed_ << " m/s";
-    else if (worstKind == 2) s << "is far outside the domain";
+    else if (worstKind == 2 && removeOutside_)
+        s << "is far outside the domain, and removing the particles there would take this run's removals ("
+          << removedParticles_ << " so far) past maxRemovedFraction " << maxRemovedFraction_ << " of the fluid";
+    else if (worstKind == 2) s << "is far outside the domain (onParticleOutside stop)";
     else s << "has a density error of " << 100 * worstDensity << "% (blowUpDensityError " << 100 * blowUpDensityError_ << "%)";
     return s.str();
 }
@@ -410,6 +459,7 @@ public:
         double time = 0, lastDeltaT = 0, dtTaken = 0, deltaTCap = 0;
         long step = 0;
         int holdSteps = 0;
+        std::size_t removedParticles = 0; // the run's removals so far
         bool valid = false;
     };
 
@@ -468,7 +518,8 @@ RunSummary Simulation::run() {
     StopSignals signals;
     auto& s = scene_;
     RunSummary summary;
-    summary.fluidParticles = s.particlesOf(SystemRole::fluid);
+    summary.fluidParticles = fluidAtStart_ = s.particlesOf(SystemRole::fluid);
+    removedParticles_ = 0;
     summary.wallParticles = s.particlesOf(SystemRole::wall) + s.particlesOf(SystemRole::body);
 
     const long startStep = s.step;
@@ -517,6 +568,7 @@ RunSummary Simulation::run() {
         before.dtTaken = dt;
         before.deltaTCap = deltaTCap_;
         before.holdSteps = deltaTHoldSteps_;
+        before.removedParticles = removedParticles_;
 
         // the step starts on the lists of its state: an integrator that carries a_n over from the
         // last step advances the integrated fields (continuity density) on them before it evaluates;
@@ -528,11 +580,13 @@ RunSummary Simulation::run() {
         s.time = before.time + dt;
         ++s.step;
         ++s.stateVersion;
+        if (removeOutside_) removeParticlesOutside();
         bool densityBlowUp = false;
         const std::string blowUp = findBlowUp(densityBlowUp);
         if (!blowUp.empty()) {
             const StateHistory::State& good = history.goBack(densityBlowUp);
             lastDeltaT_ = good.lastDeltaT;
+            removedParticles_ = good.removedParticles;
             // the times written after the good state hold the abandoned run: removed, so that
             // neither ParaView nor 'startFrom latestTime' takes them for results
             const auto removeAbandonedTimes = [&] {
@@ -627,6 +681,7 @@ RunSummary Simulation::run() {
     summary.writes = int(writer_->timesWritten());
     summary.wallSeconds = runLog.wallSeconds();
     summary.averageIterations = iterativeSteps ? double(iterations) / iterativeSteps : 0.0;
+    summary.removedParticles = removedParticles_;
     return summary;
 }
 

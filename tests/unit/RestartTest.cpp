@@ -10,6 +10,7 @@
 #include "TestSupport.hpp"
 
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -116,31 +117,32 @@ std::vector<Combination> combinations() {
     return out;
 }
 
-// Runs 'whole' to T uninterrupted on one thread, and 'split' to T/2 then restarted to T on two;
-// expects the two end states equal bit for bit. 'makeCase(dir, endTime)' makes a case.
-void expectRestartBitForBit(const fs::path& tmp, double T, const std::function<fs::path(const fs::path&, double)>& makeCase) {
+// Runs 'whole' to T uninterrupted on one thread, and 'split' to split·T then restarted to T on
+// two; expects the two end states equal bit for bit. 'makeCase(dir, endTime)' makes a case.
+void expectRestartBitForBit(const fs::path& tmp, double T, const std::function<fs::path(const fs::path&, double)>& makeCase,
+                            double split = 0.5) {
     const fs::path whole = makeCase(tmp / "whole", T);
     setThreads(1);
     {
         Simulation sim(whole);
         sim.run();
     }
-    const fs::path split = makeCase(tmp / "split", T / 2);
+    const fs::path splitCase = makeCase(tmp / "split", split * T);
     setThreads(2);
     long firstSteps = 0;
     {
-        Simulation sim(split);
+        Simulation sim(splitCase);
         firstSteps = sim.run().steps;
     }
-    editDictionary(split / "system/controlDict", {{"startFrom", "latestTime"}, {"endTime", std::to_string(T)}});
+    editDictionary(splitCase / "system/controlDict", {{"startFrom", "latestTime"}, {"endTime", std::to_string(T)}});
     {
-        Simulation sim(split);
+        Simulation sim(splitCase);
         EXPECT_EQ(sim.scene().step, firstSteps) << "the step index is restored";
         sim.run();
     }
     setThreads(1);
 
-    const ParticleSet a = finalState(whole), b = finalState(split);
+    const ParticleSet a = finalState(whole), b = finalState(splitCase);
     ASSERT_EQ(a.size(), b.size());
     ASSERT_GT(a.size(), 100u);
     EXPECT_EQ(a.id(), b.id());
@@ -148,7 +150,7 @@ void expectRestartBitForBit(const fs::path& tmp, double T, const std::function<f
     EXPECT_EQ(a.velocity(), b.velocity()) << "velocities differ";
     EXPECT_EQ(a.density(), b.density());
     EXPECT_EQ(a.pressure(), b.pressure());
-    EXPECT_EQ(CaseWriter(whole).existingTimes().size(), CaseWriter(split).existingTimes().size());
+    EXPECT_EQ(CaseWriter(whole).existingTimes().size(), CaseWriter(splitCase).existingTimes().size());
     // every field a model registered for restarts is in the time directory
     for (const auto& f : a.scalarFields()) EXPECT_EQ(f->data, *b.findScalar(f->name)) << f->name;
     for (const auto& f : a.vectorFields()) EXPECT_EQ(f->data, *b.findVector(f->name)) << f->name;
@@ -694,6 +696,97 @@ TEST(RestartInput, WritesEveryWallTheRunHas) {
               (std::vector<std::string>{"0/fluid.vtp", "0/tank.vtp", "0.01/fluid.vtp", "0.01/tank.vtp", "0.02/fluid.vtp",
                                         "0.02/basin.vtp", "0.02/post.vtp"}));
     for (const char* wall : {"basin", "post"}) EXPECT_GT(readVtp(caseDir / "0.02" / (std::string(wall) + ".vtp")).size(), 10u);
+}
+
+// hydrostaticTank2D with the tank's right side open too and the water thrown at it at 3 m/s: it
+// spills out, falls and leaves the domain (x beyond 0.2 m + the case's extent, about 0.47 m, from
+// about 0.12 s). 'controls': more controlDict entries.
+fs::path spillingTank(const fs::path& dir, double endTime, const std::vector<std::pair<std::string, std::string>>& controls = {}) {
+    tank(dir, endTime);
+    editDictionary(dir / "constant/geometry",
+                   {{"fluid", "{ water { type box; min (0 0 0); max (0.2 0.3 0); initialPressure hydrostatic; velocity (3 0 0); } }"},
+                    {"walls", "{ tank { type container; min (0 0 0); max (0.2 0.4 0); layers 3; open (xMax yMax); } }"}});
+    editDictionary(dir / "system/controlDict", controls);
+    return dir;
+}
+
+// A fluid particle that leaves the domain (an open tank's spill) is removed with a log line
+// naming it, and the run goes on (as DualSPHysics excludes them); the end line counts them. Past
+// maxRemovedFraction of the fluid, or with onParticleOutside stop, it is a blow-up. Stopped the
+// run at once before (a blow-up: "far outside the domain"; damBreakObstacle3D at 0.55/30 at
+// 1.87 s).
+TEST(ParticlesOutside, AreRemovedWithALogLineAndTheRunGoesOn) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path dir = spillingTank(tmp.path() / "spill", 0.25, {{"maxRemovedFraction", "1"}});
+    log::setQuiet(false);
+    testing::internal::CaptureStdout();
+    RunSummary run;
+    std::size_t left = 0;
+    {
+        Simulation sim(dir);
+        run = sim.run();
+        left = test::fluidOf(sim.scene()).size();
+        std::vector<Index> ids = test::fluidOf(sim.scene()).particles.id();
+        std::sort(ids.begin(), ids.end());
+        EXPECT_EQ(std::adjacent_find(ids.begin(), ids.end()), ids.end()) << "an id twice";
+    }
+    const std::string out = testing::internal::GetCapturedStdout();
+    log::setQuiet(true);
+    EXPECT_NEAR(run.endTime, 0.25, 1e-9);
+    EXPECT_GT(run.removedParticles, run.fluidParticles / 10) << out;
+    EXPECT_EQ(left + run.removedParticles, run.fluidParticles);
+    EXPECT_NE(out.find("particles of fluid that left the domain ("), std::string::npos) << out;
+    EXPECT_NE(out.find(" removed in this run, "), std::string::npos);
+    // the written end holds what is left, every particle inside
+    const ParticleSet end = finalState(dir);
+    EXPECT_EQ(end.size(), left);
+    for (const Vec3& x : end.position()) EXPECT_LT(x[0], 0.2 + 0.3) << x.transpose();
+
+    // the default cap (1 % of the fluid) is a blow-up, as is onParticleOutside stop
+    for (const auto& [controls, says] :
+         std::vector<std::pair<std::vector<std::pair<std::string, std::string>>, std::string>>{
+             {{}, "past maxRemovedFraction 0.01 of the fluid"},
+             {{{"onParticleOutside", "stop"}}, "is far outside the domain (onParticleOutside stop)"}}) {
+        const fs::path stopped = spillingTank(tmp.path() / ("stopped" + std::to_string(controls.size())), 0.25, controls);
+        try {
+            Simulation(stopped).run();
+            ADD_FAILURE() << "no blow-up: " << says;
+        } catch (const BlowUpError& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+        }
+    }
+}
+
+// ... with every pressure model (a model's per-particle data follows the particle count)
+TEST(ParticlesOutside, EveryPressureModelRunsOnAfterRemovals) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    for (const std::string& pressure : ModelRegistry::instance().available("pressure")) {
+        const fs::path dir = spillingTank(tmp.path() / pressure, 0.15, {{"maxRemovedFraction", "1"}});
+        // (artificial viscosity with a sound speed of its own: the incompressible solvers have none)
+        editDictionary(dir / "system/sphSchemes", {{"pressure", "{ type " + pressure + "; }"},
+                                                    {"viscosity", "{ type artificial; alpha 0.1; soundSpeed 25; }"}});
+        Simulation sim(dir);
+        const RunSummary run = sim.run();
+        EXPECT_NEAR(run.endTime, 0.15, 1e-9) << pressure;
+        EXPECT_GT(run.removedParticles, 20u) << pressure;
+        EXPECT_EQ(test::fluidOf(sim.scene()).size() + run.removedParticles, run.fluidParticles) << pressure;
+        EXPECT_EQ(finalState(dir).size(), test::fluidOf(sim.scene()).size()) << pressure;
+    }
+}
+
+// ... and a restart from a time after removals (0.12 s: 30 of 600 particles gone) continues bit
+// for bit
+TEST(ParticlesOutside, ARunThatRemovedSomeRestartsBitForBit) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    expectRestartBitForBit(
+        tmp.path(), 0.16,
+        [&](const fs::path& dir, double endTime) {
+            return spillingTank(dir, endTime, {{"maxRemovedFraction", "1"}, {"writeInterval", "0.04"}});
+        },
+        0.75);
 }
 
 } // namespace

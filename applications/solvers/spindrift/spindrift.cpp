@@ -357,6 +357,7 @@ int main(int argc, char** argv) {
           << " us per particle-step), " << r.writes << " times written, max density error "
           << 100 * r.maxDensityError << "%";
         if (r.averageIterations > 0) o << ", average iterations " << r.averageIterations;
+        if (r.removedParticles > 0) o << ", " << r.removedParticles << " fluid particles removed (they left the domain)";
         o << ", peak memory " << peakMemoryMiB() << " MiB";
         log::info(o.str());
         return 0;
