@@ -30,6 +30,8 @@
 #include "PairLoop.hpp"
 #include "Plugin.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace {
@@ -53,8 +55,11 @@ public:
             const Scalar fullest = w.size() ? *std::max_element(sum.begin(), sum.end()) : Scalar(0);
             const bool lattice = volume_ == "lattice" ||
                                  (volume_ == "auto" && fullest >= Scalar(0.95) * latticeSum && !ownNeighbourhood(s, w).sheet);
+            // a single layer (a Poisson-disk sampled mesh): Akinci's volume scaled so that the
+            // first fluid row, Δx from it, sums ρ0 (below)
+            const Scalar kappa = lattice ? Scalar(1) : ownNeighbourhood(s, w).sheet ? sheetFactor(s.kernel, s.physics.dimension, s.physics.particleSpacing) : Scalar(1);
             auto& mass = w.particles.addScalar("wallMass", {true, false});
-            for (std::size_t b = 0; b < mass.size(); ++b) mass[b] = lattice ? m : rho0 / sum[b];
+            for (std::size_t b = 0; b < mass.size(); ++b) mass[b] = lattice ? m : kappa * rho0 / sum[b];
             w.mass = &mass;
             w.pressureMirrored = true;
             w.viscousVelocity = nullptr;
@@ -62,11 +67,45 @@ public:
             msg << "akinci: wall '" << w.name() << "': " << (lattice ? "lattice" : "adaptive") << " volume"
                 << (volume_ == "auto" ? " (volume auto: " : " (") << "fullest wall neighbourhood "
                 << fullest / latticeSum << " of the lattice's)";
+            if (kappa != 1) msg << ", a single layer: kappa " << kappa;
             log::info(msg.str());
         }
     }
 
 private:
+    // κ of a single layer's volume: Akinci's V_b = 1/Σ_k W_bk tends to 1/∫_plane W dA on a dense
+    // flat layer, so a particle at height y over it sums ρ0 ∫_plane(y) W dA / ∫_plane(0) W dA from
+    // it (0.47 ρ0 at y = Δx for the Wendland C2 at 3Δx in 3D) on top of the fluid's half of its
+    // neighbourhood (0.75 ρ0 for the first row): 1.22 ρ0, a start that throws the summation
+    // density solvers off the wall. κ makes the first fluid row, Δx over the layer, sum ρ0:
+    //   κ = (1 − Σ_{lattice, y ≥ 0} W / Σ_lattice W) / [∫_plane(Δx) W dA / ∫_plane(0) W dA]
+    static Scalar sheetFactor(const KernelTable& kt, int dim, Scalar dx) {
+        const double R = kt.supportRadius();
+        const auto W = [&](double x, double y, double z) {
+            const double r = std::sqrt(x * x + y * y + z * z);
+            return r < R ? double(kt.W(Scalar(r))) : 0.0;
+        };
+        const int n = int(std::ceil(R / dx)), nz = dim == 3 ? n : 0;
+        double all = 0, above = 0;
+        for (int k = -n; k <= n; ++k)
+            for (int j = -n; j <= n; ++j)
+                for (int l = -nz; l <= nz; ++l) {
+                    const double w = W(j * dx, k * dx, l * dx);
+                    all += w;
+                    if (k >= 0) above += w;
+                }
+        const double e = dx / 32; // the plane's integrals by the midpoint rule
+        const int m = int(std::ceil(R / e)), mz = dim == 3 ? m : 0;
+        double atDx = 0, atZero = 0;
+        for (int j = -m; j < m; ++j)
+            for (int l = -mz; l < std::max(mz, 1); ++l) {
+                const double x = (j + 0.5) * e, z = dim == 3 ? (l + 0.5) * e : 0.0;
+                atDx += W(x, dx, z);
+                atZero += W(x, 0, z);
+            }
+        return Scalar((1 - above / all) * atZero / atDx);
+    }
+
     std::string volume_;
 };
 } // namespace
