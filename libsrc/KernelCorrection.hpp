@@ -143,13 +143,22 @@ struct CorrectedSymmetricPressureTerm {
     }
 };
 
+// The corrected symmetric pressure acceleration of q = p/ρ² (q and L of every particle) at
+// positions x, handed to out(i, a_i).
+template <class Out>
+inline void correctedSymmetricPressureAcceleration(const Scene& s, const ParticleSystem& fluid, const std::vector<Vec3>& x,
+                                                   const Scalar* q, const Mat3* L, Out&& out) {
+    const Scalar m = fluid.particles.particleMass();
+    forEachPairSum(s, fluid, x, CorrectedSymmetricPressureTerm{q, L},
+                   [&](std::size_t i, const auto&, const auto& sum) { out(i, Vec3(-(m * sum.fluid + sum.wall))); });
+}
+
 // a_i += the corrected symmetric pressure acceleration of q = p/ρ² (q and L of every particle).
 inline void addCorrectedSymmetricPressureAcceleration(const Scene& s, ParticleSystem& fluid, const std::vector<Scalar>& q,
                                                       const std::vector<Mat3>& L) {
-    const Scalar m = fluid.particles.particleMass();
     auto& a = fluid.particles.acceleration();
-    forEachPairSum(s, fluid, fluid.particles.position(), CorrectedSymmetricPressureTerm{q.data(), L.data()},
-                   [&](std::size_t i, const auto&, const auto& sum) { a[i] -= m * sum.fluid + sum.wall; });
+    correctedSymmetricPressureAcceleration(s, fluid, fluid.particles.position(), q.data(), L.data(),
+                                           [&](std::size_t i, const Vec3& ai) { a[i] += ai; });
 }
 
 // Their reactions on the walls and bodies: a_ib = −M_b (q_i + q_b) L_i ∇W_ib.

@@ -34,6 +34,11 @@ if(PVPYTHON)
   set_tests_properties(Validation.damBreakColagrossi2DFarWallForce
     PROPERTIES ENVIRONMENT "${validationEnv}" TIMEOUT 600 LABELS validation)
 endif()
+# pcisph and relaxedPbf keep a standing wave with the kernel-corrected gradient (bounds in the script)
+add_test(NAME Validation.incompressibleWaves
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/incompressibleWavesQuick.sh $<TARGET_FILE:spindriftSolver>
+          ${validationDir}/standingWave2D)
+set_tests_properties(Validation.incompressibleWaves PROPERTIES ENVIRONMENT "${validationEnv}" TIMEOUT 600 LABELS validation)
 add_test(NAME Bench.QuickDamBreak
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/benchQuick.sh $<TARGET_FILE:spindriftBench> ${validationDir}/damBreak2D)
 add_test(NAME Bench.Pick

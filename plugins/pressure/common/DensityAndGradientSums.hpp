@@ -3,6 +3,7 @@
 // forEachCachedPairSum).
 #pragma once
 
+#include "KernelCorrection.hpp"
 #include "PairLoop.hpp"
 #include "Step.hpp"
 
@@ -85,11 +86,13 @@ struct OwnWallPressureTerm {
 class OwnWallPush {
 public:
     void start(std::size_t n) { applied_.assign(n, Vec3::Zero()); }
+    // (L: each particle's kernel correction L_i, which then multiplies its push: gradientCorrection)
     template <class Apply>
     void update(Scene& s, const ParticleSystem& fluid, const Step& step, const std::vector<Scalar>& p,
-                const std::vector<Vec3>& x, Apply&& apply) {
+                const std::vector<Vec3>& x, Apply&& apply, const Mat3* L = nullptr) {
         step.core.updateBoundaryPressure(s, fluid, p);
-        forEachPairSum(s, fluid, x, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& push) {
+        forEachPairSum(s, fluid, x, OwnWallPressureTerm{}, [&](std::size_t i, const auto&, const Vec3& sum) {
+            const Vec3 push = L ? Vec3(L[i] * sum) : sum;
             apply(i, Vec3(push - applied_[i]));
             applied_[i] = push;
         });

@@ -11,7 +11,7 @@
 // PositionBasedDensitySolver.hpp, shared with pbf.
 //
 //   pressure { type relaxedPbf; omega 0.5; warmStart 0.5; epsilon 0.1; sCorrK 0;
-//              clampDensity yes; }
+//              clampDensity yes; gradientCorrection no; }
 //   sphSolution: pressure { maxDensityError 0.001; densityErrorNorm average;
 //                           minIterations 0; maxIterations 100; }
 #include "Plugin.hpp"
