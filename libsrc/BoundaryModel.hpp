@@ -39,6 +39,19 @@ public:
     }
 
 protected:
+    // Σ f(x, z) over the midpoint grid of spacing dx/32 that covers the plane's disc of radius
+    // R (a line in 2D, z = 0): a plane integral over its element, for the single layer's volume
+    // factors (adami's, akinci's), in which the element cancels.
+    template <class F>
+    static double planeSum(double R, int dim, double dx, F&& f) {
+        const double e = dx / 32;
+        const int m = int(std::ceil(R / e)), mz = dim == 3 ? m : 0;
+        double sum = 0;
+        for (int j = -m; j < m; ++j)
+            for (int l = -mz; l < std::max(mz, 1); ++l) sum += f((j + 0.5) * e, dim == 3 ? (l + 0.5) * e : 0.0);
+        return sum;
+    }
+
     // Σ_k W_bk over the particles k of every boundary (b's own included) for each particle b of
     // 'wall': the neighbourhood of Akinci et al.'s (2012) adaptive volume V_b = 1/Σ_k W_bk.
     static std::vector<Scalar> boundaryKernelSums(const Scene& s, const ParticleSystem& wall) {

@@ -132,17 +132,12 @@ private:
             for (int j = -n; j <= n; ++j)
                 for (int l = -nz; l <= nz; ++l) lattice += minusDWdy(j * dx, k * dx, l * dx);
         lattice *= std::pow(double(dx), dim);
-        const double e = dx / 32; // the plane's integrals by the midpoint rule
-        const int m = int(std::ceil(R / e)), mz = dim == 3 ? m : 0;
-        double gradient = 0, weight = 0;
-        for (int j = -m; j < m; ++j)
-            for (int l = -mz; l < std::max(mz, 1); ++l) {
-                const double x = (j + 0.5) * e, z = dim == 3 ? (l + 0.5) * e : 0.0;
-                gradient += minusDWdy(x, dx, z);
-                const double r = std::sqrt(x * x + z * z);
-                if (r < R) weight += double(kt.W(Scalar(r)));
-            }
-        return Scalar(lattice * weight / gradient); // (the plane's element e^(d-1) cancels)
+        const double gradient = planeSum(R, dim, dx, [&](double x, double z) { return minusDWdy(x, dx, z); });
+        const double weight = planeSum(R, dim, dx, [&](double x, double z) {
+            const double r = std::sqrt(x * x + z * z);
+            return r < R ? double(kt.W(Scalar(r))) : 0.0;
+        });
+        return Scalar(lattice * weight / gradient); // (the plane's element cancels)
     }
 
     // p_w, ρ_w (and v̂_w when 'velocities') of every boundary from the pressure p of a fluid.

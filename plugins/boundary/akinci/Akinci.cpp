@@ -94,15 +94,8 @@ private:
                     all += w;
                     if (k >= 0) above += w;
                 }
-        const double e = dx / 32; // the plane's integrals by the midpoint rule
-        const int m = int(std::ceil(R / e)), mz = dim == 3 ? m : 0;
-        double atDx = 0, atZero = 0;
-        for (int j = -m; j < m; ++j)
-            for (int l = -mz; l < std::max(mz, 1); ++l) {
-                const double x = (j + 0.5) * e, z = dim == 3 ? (l + 0.5) * e : 0.0;
-                atDx += W(x, dx, z);
-                atZero += W(x, 0, z);
-            }
+        const double atDx = planeSum(R, dim, dx, [&](double x, double z) { return W(x, dx, z); });
+        const double atZero = planeSum(R, dim, dx, [&](double x, double z) { return W(x, 0, z); });
         return Scalar((1 - above / all) * atZero / atDx);
     }
 

@@ -318,16 +318,15 @@ private:
         Scalar invRho0, k, invWq; // s_corr = −k (W/W(Δq))ⁿ (k = 0: none)
         int power;
         Particle particle(std::size_t i) const { return l[i]; }
-        void fluid(Scalar li, const Pair& q, Sum& sum) const {
-            Scalar coeff = li + l[q.j];
-            if (k != 0) {
-                const Scalar ratio = kt.WSq(q.r2) * invWq;
-                Scalar rn = ratio;
-                for (int e = 1; e < power; ++e) rn *= ratio;
-                coeff -= k * rn;
-            }
-            sum.fluid += coeff * q.gradW;
+        // s_corr,ij at |r_ij|² = r2 (0 without it)
+        Scalar sCorr(Scalar r2) const {
+            if (k == 0) return 0;
+            const Scalar ratio = kt.WSq(r2) * invWq;
+            Scalar rn = ratio;
+            for (int e = 1; e < power; ++e) rn *= ratio;
+            return -k * rn;
         }
+        void fluid(Scalar li, const Pair& q, Sum& sum) const { sum.fluid += (li + l[q.j] + sCorr(q.r2)) * q.gradW; }
         void wall(Scalar li, const WallPair& q, Sum& sum) const { sum.wall += (q.mass() * invRho0 * li) * q.gradW; }
     };
 
@@ -345,13 +344,7 @@ private:
         const Mat3* L;
         Particle particle(std::size_t i) const { return {plain.l[i], plain.l[i] * L[i]}; }
         void fluid(const Particle& pi, const Pair& q, Sum& sum) const {
-            sum.fluid.noalias() += (pi.lL + plain.l[q.j] * L[q.j]) * q.gradW;
-            if (plain.k != 0) {
-                const Scalar ratio = plain.kt.WSq(q.r2) * plain.invWq;
-                Scalar rn = ratio;
-                for (int e = 1; e < plain.power; ++e) rn *= ratio;
-                sum.fluid -= (plain.k * rn) * q.gradW;
-            }
+            sum.fluid.noalias() += (pi.lL + plain.l[q.j] * L[q.j]) * q.gradW + plain.sCorr(q.r2) * q.gradW;
         }
         void wall(const Particle& pi, const WallPair& q, Sum& sum) const {
             sum.wall.noalias() += (q.mass() * plain.invRho0) * (pi.lL * q.gradW);
