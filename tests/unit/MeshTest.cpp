@@ -46,6 +46,16 @@ Mesh boxMesh(const V& lo, const V& hi) {
     return m;
 }
 
+// The same box without its top face (y = hi): an open tank.
+Mesh openTankMesh(const V& lo, const V& hi) {
+    const Mesh box = boxMesh(lo, hi);
+    Mesh open;
+    open.x = box.x;
+    for (std::size_t k = 0; k < box.t.size(); ++k)
+        if (k / 2 != 3) open.t.push_back(box.t[k]);
+    return open;
+}
+
 // An icosphere of radius R: 20·4^level triangles (level 3: 1280, level 4: 5120), normals outwards.
 Mesh icosphere(double R, int level, const V& centre = V::Zero()) {
     const double p = (1 + std::sqrt(5.0)) / 2;
@@ -338,11 +348,7 @@ TEST(Mesh, PoissonDiskSpacingAndCoverage) {
     EXPECT_GT(f.covering, 0.5 * r); // (a sampling as dense as the test points would pass anything)
 
     // 2D: the section of a prism (the open tank of the hydrostatic test)
-    const Mesh t = boxMesh(V(-0.005, -0.005, -1), V(0.205, 0.5, 1));
-    Mesh open;
-    open.x = t.x;
-    for (std::size_t k = 0; k < t.t.size(); ++k)
-        if (k / 2 != 3) open.t.push_back(t.t[k]); // without the top (y = max)
+    const Mesh open = openTankMesh(V(-0.005, -0.005, -1), V(0.205, 0.5, 1));
     TriangleMesh tank = TriangleMesh::fromTriangles(open.x, open.t);
     EXPECT_GT(tank.openEdges(), 0u);
     const auto samples2 = poissonDiskSurface(tank, r, 2).positions;
@@ -425,11 +431,7 @@ PoissonTank hydrostaticTankOnAPoissonDiskWall(const std::string& boundary, const
     test::TempDir tmp;
     const double h = 0.01, H = 0.2, W = 0.2;
     // the tank's faces half a spacing outside the fluid box [0, W] × [0, H]
-    const Mesh t = boxMesh(V(-h / 2, -h / 2, -1), V(W + h / 2, 0.3, 1));
-    Mesh open;
-    open.x = t.x;
-    for (std::size_t k = 0; k < t.t.size(); ++k)
-        if (k / 2 != 3) open.t.push_back(t.t[k]);
+    const Mesh open = openTankMesh(V(-h / 2, -h / 2, -1), V(W + h / 2, 0.3, 1));
     writeObj(tmp.path() / "constant/triSurface/tank.obj", open);
     writeCase(tmp.path(),
               "dimension 2; rho0 1000; viscosity 1e-6; gravity (0 -9.81 0); particleSpacing 0.01; supportRadius 3;\n",
@@ -527,11 +529,7 @@ TEST(Mesh, StillWaterStaysInAPoissonDiskCube3D) {
     log::setQuiet(true);
     test::TempDir tmp;
     const double h = 0.01, L = 0.1;
-    const Mesh t = boxMesh(V(-h / 2, -h / 2, -h / 2), V(L + h / 2, 2 * L, L + h / 2));
-    Mesh open;
-    open.x = t.x;
-    for (std::size_t k = 0; k < t.t.size(); ++k)
-        if (k / 2 != 3) open.t.push_back(t.t[k]); // without the top (y = max)
+    const Mesh open = openTankMesh(V(-h / 2, -h / 2, -h / 2), V(L + h / 2, 2 * L, L + h / 2));
     writeObj(tmp.path() / "constant/triSurface/tank.obj", open);
     writeCase(tmp.path(),
               "dimension 3; rho0 1000; viscosity 1e-6; gravity (0 -9.81 0); particleSpacing 0.01; supportRadius 3;\n",
@@ -564,11 +562,7 @@ TEST(Mesh, StillWaterStaysInAPoissonDiskCube3D) {
 TEST(Mesh, EveryIncompressibleSolverHoldsStillWaterOnAPoissonDiskLayer3D) {
     log::setQuiet(true);
     const double h = 0.01, L = 0.1;
-    const Mesh t = boxMesh(V(-h / 2, -h / 2, -h / 2), V(L + h / 2, 2 * L, L + h / 2));
-    Mesh open;
-    open.x = t.x;
-    for (std::size_t k = 0; k < t.t.size(); ++k)
-        if (k / 2 != 3) open.t.push_back(t.t[k]); // without the top (y = max)
+    const Mesh open = openTankMesh(V(-h / 2, -h / 2, -h / 2), V(L + h / 2, 2 * L, L + h / 2));
     for (const char* solver : {"relaxedPbf", "pbf", "pcisph", "dfsph", "iisph"}) {
         test::TempDir tmp;
         writeObj(tmp.path() / "constant/triSurface/tank.obj", open);
@@ -608,11 +602,7 @@ TEST(Mesh, SingleLayerWallsTakeTheAdaptiveVolume) {
             test::TempDir tmp;
             const double h = 0.01, W = 0.1;
             const double zlo = dim == 3 ? -h / 2 : -1, zhi = dim == 3 ? W + h / 2 : 1;
-            const Mesh t = boxMesh(V(-h / 2, -h / 2, zlo), V(W + h / 2, 0.2, zhi));
-            Mesh open;
-            open.x = t.x;
-            for (std::size_t k = 0; k < t.t.size(); ++k)
-                if (k / 2 != 3) open.t.push_back(t.t[k]);
+            const Mesh open = openTankMesh(V(-h / 2, -h / 2, zlo), V(W + h / 2, 0.2, zhi));
             writeObj(tmp.path() / "constant/triSurface/tank.obj", open);
             const std::string top = dim == 3 ? "0.1 0.1 0.1" : "0.1 0.1 0";
             writeCase(tmp.path(),
