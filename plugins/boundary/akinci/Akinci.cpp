@@ -53,11 +53,11 @@ public:
             ParticleSystem& w = *wall;
             const std::vector<Scalar> sum = boundaryKernelSums(s, w);
             const Scalar fullest = w.size() ? *std::max_element(sum.begin(), sum.end()) : Scalar(0);
-            const bool lattice = volume_ == "lattice" ||
-                                 (volume_ == "auto" && fullest >= Scalar(0.95) * latticeSum && !ownNeighbourhood(s, w).sheet);
+            const bool sheet = volume_ != "lattice" && ownNeighbourhood(s, w).sheet;
+            const bool lattice = volume_ == "lattice" || (volume_ == "auto" && fullest >= Scalar(0.95) * latticeSum && !sheet);
             // a single layer (a Poisson-disk sampled mesh): Akinci's volume scaled so that the
             // first fluid row, Δx from it, sums ρ0 (below)
-            const Scalar kappa = lattice ? Scalar(1) : ownNeighbourhood(s, w).sheet ? sheetFactor(s.kernel, s.physics.dimension, s.physics.particleSpacing) : Scalar(1);
+            const Scalar kappa = !lattice && sheet ? sheetFactor(s.kernel, s.physics.dimension, s.physics.particleSpacing) : Scalar(1);
             auto& mass = w.particles.addScalar("wallMass", {true, false});
             for (std::size_t b = 0; b < mass.size(); ++b) mass[b] = lattice ? m : kappa * rho0 / sum[b];
             w.mass = &mass;
