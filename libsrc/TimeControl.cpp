@@ -165,14 +165,18 @@ double TimeControl::nextDeltaT(double time, double stableDeltaT, double cap, boo
     }
     if (capped) *capped = cap < dt;
     dt = std::min(dt, cap);
+    // the steps to the target made even, as OpenFOAM's Time::adjustDeltaT: n = ⌈remaining/Δt⌉ steps
+    // of remaining/n. Δt changes by a fraction 1/n where the target is n steps away, not by a
+    // short step before it, which kicked the iterative pressure solvers (a still tank's pressure
+    // rang at ±40 % after each write, issue 35)
     auto landOn = [&](double target) {
         const double remaining = target - time;
-        if (remaining <= timeTolerance_) return;
-        if (dt >= remaining - timeTolerance_) dt = remaining;
-        else if (dt > 0.5 * remaining) dt = 0.5 * remaining; // two even steps, not a sliver
+        if (remaining <= timeTolerance_ || !(dt > 0)) return;
+        const double steps = std::ceil((remaining - timeTolerance_) / dt);
+        if (steps < maxSteps) dt = remaining / std::max(steps, 1.0);
     };
-    if (writeControl_ == WriteControl::AdjustableRunTime) landOn(nextWriteTime_);
-    landOn(endTime_);
+    // the nearer of the two (evening out the steps to the farther would miss the nearer)
+    landOn(writeControl_ == WriteControl::AdjustableRunTime ? std::min(nextWriteTime_, endTime_) : endTime_);
     previousDeltaT_ = adjustTimeStep_ ? dt : previousDeltaT_;
     return dt;
 }

@@ -6,7 +6,7 @@
 //   writeControl   timeStep | runTime | adjustableRunTime;         writeInterval 0.01;
 //   timePrecision  6;   // significant digits of the time directories' names (1 to 17)
 //
-// adjustableRunTime shortens steps so that they land exactly on write times (and endTime).
+// adjustableRunTime evens out the steps so that they land exactly on write times (and endTime).
 #pragma once
 
 #include "Dictionary.hpp"
@@ -46,8 +46,8 @@ public:
 
     // Δt for the next step: 'stableDeltaT' is the stability limit (used when adjustTimeStep),
     // never more than maxDeltaT nor 1.2× the previous step nor 'cap' (a blow-up retry's), then
-    // shortened to land on the next write time (adjustableRunTime) and on endTime. 'capped'
-    // (optional) tells whether the cap was below the step otherwise taken.
+    // shortened so that even steps land on the next write time (adjustableRunTime) and on
+    // endTime. 'capped' (optional) tells whether the cap was below the step otherwise taken.
     double nextDeltaT(double time, double stableDeltaT, double cap = std::numeric_limits<double>::infinity(),
                       bool* capped = nullptr);
 

@@ -625,7 +625,8 @@ RunSummary Simulation::run() {
         // a blow-up's cap: held, then grown gradually, dropped once Δt stays below it
         if (std::isfinite(deltaTCap_) && (deltaTHoldSteps_ == 0 || --deltaTHoldSteps_ == 0)) {
             if (capped) {
-                deltaTCap_ *= blowUpCapGrowth;
+                // from the step taken (a step evened out to land on a write time may be below the cap)
+                deltaTCap_ = blowUpCapGrowth * std::min(deltaTCap_, dt);
             } else {
                 std::ostringstream m;
                 m << std::setprecision(6) << "deltaT " << dt << " at time " << s.time
