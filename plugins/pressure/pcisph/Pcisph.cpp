@@ -2,7 +2,7 @@
 // Algorithm 2 and eqs. 1–9; docs/MODELS.md §pcisph).
 //
 // Inside one call, on the step's neighbour lists, with the step's Δt:
-//   p = w p_last (warmStart w, 0.5; the paper's p = 0 is w = 0), a_p from it; repeat:
+//   p = w p_last (warmStart w, 0 by default: the paper's p = 0), a_p from it; repeat:
 //     v* = v + Δt (a_nonp + a_p),  x* = x + Δt v*                       (prediction)
 //     ρ*_i = m Σ_j W(x*_i − x*_j) + Σ_b M_b W(x*_i − x_b)               (eq. 1, walls included)
 //     stop if iterations ≥ minIterations and the density error ≤ η, or at maxIterations, or
@@ -37,15 +37,18 @@
 // (mirrored or their own) the boundary model gives them, at their positions of the step; walls
 // of their own pressure (adami) have it extrapolated again from the fluid's at every correction.
 //
-// The warm start makes the pressure a physical one that a probe or a wall can read: in the
-// hydrostatic tank (validation case, adami walls) the bottom probe reads +5.4 % with w = 0,
-// −2.5 % with 0.5, and a restless column (0.3 m/s) with w = 1.
+// No warm start by default (issue 35): the pressure carried over from the last step is a delayed
+// force that pumps the column's compression mode, which the three iterations do not damp. In the
+// hydrostatic tank (validation case, adami walls, 1 ms steps) the bottom probe rang with a period
+// of ~29 steps at ±65 % of ρ0 g (H − z) with w = 0.5 (std 45 % over 1.5–2 s), and is still with
+// w = 0 or 0.25 (std 0.0 %, mean +0.74 %); w = 1 leaves the column restless (0.2 m/s). The
+// Colagrossi dam break (H/40): wall pressure noise 0.064 → 0.043, closest pair 0.53 → 0.55 Δx.
 //
 // With `gradientCorrection yes` a_p takes the kernel-corrected gradient (KernelCorrection.hpp,
 // L_i at the step's positions): a standing wave loses 3.9 % of its height a period instead of
 // 18 % (docs/MODELS.md §pcisph).
 //
-//   pressure { type pcisph; clampNegativePressure yes; warmStart 0.5; gradientCorrection no; }
+//   pressure { type pcisph; clampNegativePressure yes; warmStart 0; gradientCorrection no; }
 //   sphSolution: pressure { maxDensityError 0.01; densityErrorNorm maximum;
 //                           minIterations 3; maxIterations 100; }
 #include "DensityAndGradientSums.hpp"
@@ -68,7 +71,7 @@ class Pcisph final : public PressureModel {
 public:
     explicit Pcisph(const ModelContext& c)
         : rho0_(c.physics.rho0), clampNegative_(c.dict.getOrDefault<bool>("clampNegativePressure", true)),
-          warmStart_(c.dict.getOrDefault<double>("warmStart", 0.5)),
+          warmStart_(c.dict.getOrDefault<double>("warmStart", 0.0)),
           corrected_(c.dict.getOrDefault<bool>("gradientCorrection", false)) {
         if (!(warmStart_ >= 0 && warmStart_ <= 1))
             throw InputError(c.dict.locationOf("warmStart"), "warmStart must be in [0, 1]", "warmStart");
