@@ -16,6 +16,7 @@
 #include <fstream>
 #include <random>
 #include <regex>
+#include <sstream>
 
 using namespace spindrift;
 namespace fs = std::filesystem;
@@ -296,6 +297,9 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
     control = std::regex_replace(control, std::regex("\nwriteInterval[^;]*;"), "\nwriteInterval 1;");
     control = std::regex_replace(control, std::regex("\nmaxCo[^;]*;"), "\nmaxCo 0.3;");
     control = std::regex_replace(control, std::regex("\nmaxDeltaT[^;]*;"), "\nmaxDeltaT 2e-3;");
+    // the pressure at a bottom and a mid-depth probe, every step
+    control += "functions { p { type probes; fields (pressure); probeLocations ((0.1 0.045 0) (0.1 0.15 0)); "
+               "writeControl timeStep; writeInterval 1; } }\n";
     std::ofstream(dir / "system/controlDict") << control;
 
     Simulation sim(dir);
@@ -303,7 +307,7 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
     EXPECT_GT(r.steps, 300);
     auto& s = sim.scene();
     sim.evaluate(s.time, Scalar(2e-3));
-    const double rho0 = s.physics.rho0, g = 9.81, H = 0.3, dx = s.physics.particleSpacing;
+    const double rho0 = s.physics.rho0, g = 9.81, H = 0.3;
     double maxErr = 0, vMax = 0, v2 = 0;
     for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
         const Vec3 x = test::fluidOf(s).particles.position()[i];
@@ -314,44 +318,48 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
         vMax = std::max(vMax, double(test::fluidOf(s).particles.velocity()[i].norm()));
         v2 += test::fluidOf(s).particles.velocity()[i].squaredNorm();
     }
-    // row-mean pressure against ρ0 g (H − z): the bottom row and the mid-depth row, as a
-    // fraction of ρ0 g H
-    auto rowError = [&](double zLo, double zHi, double& p) {
-        double z = 0;
-        int count = 0;
-        p = 0;
-        for (std::size_t i = 0; i < test::fluidOf(s).particles.size(); ++i) {
-            const double y = test::fluidOf(s).particles.position()[i].y();
-            if (y >= zLo && y < zHi) {
-                p += test::fluidOf(s).particles.pressure()[i];
-                z += y;
-                ++count;
-            }
-        }
-        EXPECT_GT(count, 0);
-        p /= count;
-        z /= count;
-        return (p - rho0 * g * (H - z)) / (rho0 * g * H);
-    };
-    double pBottom, pMid;
-    const double bottomError = rowError(0, dx, pBottom), midError = rowError(0.15 - 0.5 * dx, 0.15 + 0.5 * dx, pMid);
+    // the probes' mean over the last quarter of the run against ρ0 g (H − z), as a fraction of
+    // ρ0 g H, and their standard deviation: iisph's pressure is not still at rest (it differs from
+    // step to step by the iterations' residual), so a reading at one moment says little
+    std::ifstream probes(dir / "postProcessing/p/0/p.dat");
+    ASSERT_TRUE(probes) << "no probe output";
+    double sum[2] = {0, 0}, sum2[2] = {0, 0};
+    int samples = 0;
+    for (std::string line; std::getline(probes, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream in(line);
+        double t = 0, p0 = 0, p1 = 0;
+        in >> t >> p0 >> p1;
+        if (t < 0.75) continue;
+        sum[0] += p0, sum[1] += p1, sum2[0] += p0 * p0, sum2[1] += p1 * p1;
+        ++samples;
+    }
+    ASSERT_GT(samples, 50);
+    const double zProbe[2] = {0.045, 0.15};
+    double error[2], noise[2];
+    for (int k = 0; k < 2; ++k) {
+        const double mean = sum[k] / samples, exact = rho0 * g * (H - zProbe[k]);
+        error[k] = (mean - exact) / (rho0 * g * H);
+        noise[k] = std::sqrt(std::max(0.0, sum2[k] / samples - mean * mean)) / exact;
+    }
     const double rms = std::sqrt(v2 / test::fluidOf(s).particles.size());
     std::cout << "iisph hydrostatic column: " << r.steps << " steps, " << r.averageIterations
               << " iterations on average; final max density error " << 100 * maxErr << " %, max speed " << vMax
-              << " m/s, RMS speed " << rms << " m/s; bottom row " << pBottom << " Pa (error " << 100 * bottomError
-              << " % of rho0 g H), mid-depth row " << pMid << " Pa (error " << 100 * midError << " %)\n";
+              << " m/s, RMS speed " << rms << " m/s; over 0.75-1 s (" << samples << " steps) the bottom probe "
+              << 100 * error[0] << " % of rho0 g H (std " << 100 * noise[0] << " %), the mid-depth probe "
+              << 100 * error[1] << " % (std " << 100 * noise[1] << " %)\n";
     // measured on the tutorial's adami walls (their pressure follows each iteration): max density
-    // error 0.18 %, RMS 0.0006 m/s (sqrt(g H) = 1.7 m/s), max 0.0034 m/s; both rows 4.2 % below
-    // ρ0 g (H − z), a uniform offset: the surface layer, short of neighbours, clamps at p = 0 and
-    // the column reads as if ~2.5 Δx shorter (on mirrored Akinci walls: bottom +7.5 %, mid 1.2 %)
+    // error 0.17 %, RMS 0.0006 m/s (sqrt(g H) = 1.7 m/s), max 0.003 m/s; the probes' means
+    // within 1 % of ρ0 g H of ρ0 g (H − z) (the single moment of the rows read before: −4.2 %,
+    // or +5.1 % at the bottom and +1.4 % mid-depth after a change of the steps' lengths)
     EXPECT_LE(maxErr, 0.01);
     EXPECT_LT(rms, 0.03);
     EXPECT_LT(vMax, 0.15);
-    EXPECT_LT(std::abs(bottomError), 0.06);
-    EXPECT_LT(std::abs(midError), 0.06);
-    // the gradient itself is ρ0 g in the double build; the float build's column (its residual
-    // motion chaotic) read bottom +4.1 %, mid 0.0 %
-    EXPECT_LT(std::abs(bottomError - midError), test::tol(0.01, 0.06));
+    EXPECT_LT(std::abs(error[0]), test::tol(0.02, 0.06));
+    EXPECT_LT(std::abs(error[1]), test::tol(0.02, 0.06));
+    // the gradient itself is ρ0 g in the double build (the float build's column, its residual
+    // motion chaotic, read a moment's bottom +4.1 %, mid 0.0 %)
+    EXPECT_LT(std::abs(error[0] - error[1]), test::tol(0.01, 0.06));
 }
 
 } // namespace

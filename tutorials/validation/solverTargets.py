@@ -7,7 +7,8 @@ one-word swap (its `pressureSolvers` entries and its system/sphSolution), measur
               evaluate.py's figures: wallPenetration, p4Mean (vs De Courcy's p4MeanRef),
               pressureOscillation, minPairDistance, maxDensityError, wallArrival, pressureNoise
   tank        tutorials/validation/hydrostaticTank2D (2 s of still water), the block swapped the
-              same way: bottomPressureError (%, probe 1.5 h above the floor), the bottom row's mean
+              same way: bottomPressureError (%, probe 1.5 h above the floor) and its noise
+              (bottomPressureNoise, the standard deviation in %), the bottom row's mean
               pressure against rho0 g (H - z) (%) and its height over the floor (dx), the closest
               pair (dx), the largest speed at the end, the bottom corner particles' pressure
   damBreak    tutorials/damBreak2D with `pressure $pressureSolvers.X;` (the one-word swap), and
@@ -287,7 +288,8 @@ def dam_break(solver, args, obstacle):
 COLUMNS = {
     "colagrossi": ["wall", "iterations", "wallArrival", "wallPenetration", "p4Mean", "p4MeanRef", "p1Early",
                    "pressureNoise", "pressureOscillation", "minPairDistance", "maxDensityError", "lostParticles"],
-    "tank": ["wall", "iterations", "bottomPressureError", "midPressureError", "bottomRow", "bottomRowHeight",
+    "tank": ["wall", "iterations", "bottomPressureError", "bottomPressureNoise", "midPressureError", "bottomRow",
+             "bottomRowHeight",
              "cornerPressure", "minPair", "maxSpeedEnd", "maxDensityErrorLog"],
     "damBreak": ["wall", "iterations", "penetration", "minPair", "rhoErrMax", "maxDensityErrorLog", "firstRow",
                  "onFace", "hist"],

@@ -9,6 +9,9 @@ Figures (time averages over the last quarter of the run, 'after settling'):
   bottomPressureError  |p - rho0 g (H - z)| / (rho0 g (H - z)) at the bottom probe (1.5 h
                        above the floor), in %
   midPressureError     the same at mid-depth (z = H/2), in %
+  bottomPressureNoise  the bottom probe's standard deviation over the window, in % of
+                       rho0 g (H - z): still water's pressure should be still (an iterative
+                       solver that stops short leaves its column ringing)
   maxSpeed             largest particle speed at the end [m/s]
   levelError           free-surface level at the gauge minus H, in particle spacings
 H is the column's initial height (exact by mass conservation: rho0 g H is the weight per area).
@@ -39,6 +42,7 @@ def main():
     end = t[-1]
     window = t >= 0.75 * end
     pmean = p.data[window][:, pcols].mean(axis=0)
+    pstd = p.data[window][:, pcols].std(axis=0)
     exact = rho0 * g * (H - z)
     rel = 100 * np.abs(pmean - exact) / exact
     bottom = int(np.argmin(z))
@@ -53,6 +57,8 @@ def main():
           % (rel[bottom], z[bottom], pmean[bottom], exact[bottom]))
     print("Figure: midPressureError = %.3f %% (probe z = %.4g m: %.1f Pa, exact %.1f Pa)"
           % (rel[mid], z[mid], pmean[mid], exact[mid]))
+    print("Figure: bottomPressureNoise = %.3f %% (standard deviation %.1f Pa over %d samples)"
+          % (100 * pstd[bottom] / exact[bottom], pstd[bottom], int(window.sum())))
     print("Figure: maxSpeed = %.4g m/s (at t = %g s)" % (speed[-1], stats.time[-1]))
     print("Figure: levelError = %.3f particle spacings (surface %.4f m, H = %g m)"
           % (level_error, level.data[-1, 1], H))
