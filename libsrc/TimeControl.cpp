@@ -167,8 +167,8 @@ double TimeControl::nextDeltaT(double time, double stableDeltaT, double cap, boo
     dt = std::min(dt, cap);
     // the steps to the target made even, as OpenFOAM's Time::adjustDeltaT: n = ⌈remaining/Δt⌉ steps
     // of remaining/n. Δt changes by a fraction 1/n where the target is n steps away, not by a
-    // short step before it, which kicked the iterative pressure solvers (a still tank's pressure
-    // rang at ±40 % after each write, issue 35)
+    // short step before it, which kicked the iterative pressure solvers (pcisph's still tank rang
+    // at ±65 % of ρ0 g (H − z) after each write, issue 35)
     auto landOn = [&](double target) {
         const double remaining = target - time;
         if (remaining <= timeTolerance_ || !(dt > 0)) return;
