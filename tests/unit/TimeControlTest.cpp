@@ -34,7 +34,7 @@ Steps run(const char* controlDict, double start, double stable) {
 // adjustableRunTime evens out the steps before a write time (OpenFOAM's Time::adjustDeltaT) rather
 // than taking a short step to land on it: a run at Δt = 1 ms that is 0.3 ms off the write times'
 // grid took a 0.3 ms step before each write, and the step's change rang the iterative pressure
-// solvers' pressure (a still tank's at ±20 % of hydrostatic after each write; issue 35)
+// solvers' pressure (pcisph's still tank at ±65 % of hydrostatic after each write; issue 35)
 TEST(TimeControl, AdjustableRunTimeLandsOnEveryWriteTimeWithEvenSteps) {
     const char* control = "endTime 2; deltaT 1e-3; adjustTimeStep yes; maxDeltaT 1e-3; maxCo 0.2; "
                           "writeControl adjustableRunTime; writeInterval 0.5;";

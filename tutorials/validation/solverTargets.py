@@ -289,8 +289,7 @@ COLUMNS = {
     "colagrossi": ["wall", "iterations", "wallArrival", "wallPenetration", "p4Mean", "p4MeanRef", "p1Early",
                    "pressureNoise", "pressureOscillation", "minPairDistance", "maxDensityError", "lostParticles"],
     "tank": ["wall", "iterations", "bottomPressureError", "bottomPressureNoise", "midPressureError", "bottomRow",
-             "bottomRowHeight",
-             "cornerPressure", "minPair", "maxSpeedEnd", "maxDensityErrorLog"],
+             "bottomRowHeight", "cornerPressure", "minPair", "maxSpeedEnd", "maxDensityErrorLog"],
     "damBreak": ["wall", "iterations", "penetration", "minPair", "rhoErrMax", "maxDensityErrorLog", "firstRow",
                  "onFace", "hist"],
 }
