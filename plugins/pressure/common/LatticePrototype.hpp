@@ -83,33 +83,42 @@ inline double latticeMaxCorrectionGain(const KernelTable& kernel, double dx, int
     return gain;
 }
 
-// The factor every Jacobi-type pressure solver (pcisph's δ, dfsph's and iisph's ω, pbf's and
-// relaxedPbf's position update) scales its relaxation by so that no lattice wave is corrected with
-// a gain above 1.8 (below the 2 where the iteration diverges): 1 where the kernel's largest gain g
-// is at most 1.8 (the usual supports: cubic spline at 2Δx in 3D 1.41, at 2.6Δx in 2D 1.44;
-// Wendland C2 at 2.6Δx in 2D 1.30, at 3Δx 1.67), else 1.8/g (Wendland C2 at 4Δx in 2D: g = 2.84,
-// where dfsph and iisph blew up at the Colagrossi dam break's corner, the max speed doubling every
-// step from the first, and pbf in the Taylor–Green vortex). The solvers' own relaxations are
-// written for a single particle's response (g = 1); ω = 1 in dfsph is twice pcisph's δ, whose
-// free-surface clamp (ρ* ≥ ρ0 only) keeps it stable in practice below the bound. docs/MODELS.md
-// §jacobiRelaxation.
+// The bound on every Jacobi-type pressure solver's relaxation (pcisph's δ, dfsph's and iisph's ω,
+// pbf's and relaxedPbf's position update): no lattice wave is corrected with a gain above 1.8
+// (below the 2 where the iteration diverges). A solver's relaxation r corrects the wave k with
+// the gain c r g(k), c its gain per unit of relaxation in pcisph's normalisation (pcisph's δ 1;
+// dfsph's and iisph's ω 2, their diagonal being the whole of i's response, twice δ's; pbf's
+// (1 + ω) 2/(1 + ε/D0)), so r is held to at most 1.8/(c g) with g the kernel's largest gain
+// (cubic spline at 2Δx in 3D 1.41, at 2.6Δx in 2D 1.44; Wendland C2 at 2.6Δx in 2D 1.30, at 3Δx
+// 1.67, at 2.6Δx in 3D 2.10, at 4Δx in 2D 2.84). Where the bound was applied to the nominal
+// relaxation instead of c r (dfsph at ω = 1, relaxedPbf at 1 + ω = 1.5: c r g = 3.6 and 2.7 on
+// the Wendland C2 at 4Δx in 2D), the waves beyond 2 were held only by the clamp ρ* ≥ ρ0, and the
+// clamp's switching rang the whole column: a still tank's bottom pressure swung ±70–80 % of
+// ρ0 g H with a period of 20–30 steps, the Colagrossi far wall's at H/80 by 0.5 ρ0 g H (issue 35).
+// Without any bound iisph blew up in a still tank at step 8, dfsph at the Colagrossi dam break's
+// corner at H/40, pbf in the Taylor–Green vortex. docs/MODELS.md §jacobiRelaxation.
 inline constexpr double maxJacobiCorrectionGain = 1.8;
+
+// pcisph's δ (c = 1, r = 1): the factor it is scaled by, min(1, 1.8/g).
 inline double jacobiRelaxationScale(double gain) {
     return gain > maxJacobiCorrectionGain ? maxJacobiCorrectionGain / gain : 1.0;
 }
 
-// A solver's relaxation 'relaxation' times jacobiRelaxationScale for this kernel on the lattice of
-// spacing dx; says so in the log when the scale applies ("<what> relaxed by ...").
-inline double scaledJacobiRelaxation(const KernelTable& kernel, double dx, int dimension, double relaxation,
-                                     const std::string& what) {
-    const double scaled = relaxation * jacobiRelaxationScale(latticeMaxCorrectionGain(kernel, dx, dimension));
-    if (scaled < relaxation) {
+// A solver's relaxation 'relaxation', of gain 'gainPerUnit' (c above) per unit, held to the bound
+// for this kernel on the lattice of spacing dx; says so in the log when the bound applies
+// ("<what> relaxed by ...").
+inline double boundedJacobiRelaxation(const KernelTable& kernel, double dx, int dimension, double relaxation,
+                                      double gainPerUnit, const std::string& what) {
+    const double gain = gainPerUnit * latticeMaxCorrectionGain(kernel, dx, dimension);
+    const double bounded = std::min(relaxation, maxJacobiCorrectionGain / gain);
+    if (bounded < relaxation) {
         std::ostringstream m;
-        m << what << " relaxed by " << scaled << " instead of " << relaxation
-          << ": the kernel's largest lattice correction gain is above " << maxJacobiCorrectionGain;
+        m << what << " relaxed by " << bounded << " instead of " << relaxation
+          << ": the kernel's largest lattice correction gain times the solver's (" << gain << ") would exceed "
+          << maxJacobiCorrectionGain;
         log::info(m.str());
     }
-    return scaled;
+    return bounded;
 }
 
 // PCISPH's δ = −1 / (β (−Σ∇W_ij·Σ∇W_ij − Σ ∇W_ij·∇W_ij)), β = 2 Δt² m² / ρ0² (eq. 8), so that

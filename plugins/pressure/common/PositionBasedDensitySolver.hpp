@@ -122,8 +122,9 @@ public:
         d0_ = volume_ * volume_ * Scalar(proto.gradSumSquared + proto.sumGradSquared);
         if (!(d0_ > 0)) throw std::runtime_error(name_ + ": the prototype particle has no neighbours");
         epsilon_ = options_.epsilon * d0_;
-        relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension,
-                                                    1 + options_.omega, name_ + ": the position update (1 + omega)"));
+        relaxation_ = Scalar(boundedJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension,
+                                                     1 + options_.omega, 2 / (1 + options_.epsilon),
+                                                     name_ + ": the position update (1 + omega)"));
         wDeltaQ_ = s.kernel.W(options_.sCorrDeltaQ * s.constants.supportRadius);
         for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
             fluid->particles.addScalar("pbfLambda", {false, true}); // λ/Δt² of the last step

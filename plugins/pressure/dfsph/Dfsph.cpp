@@ -106,8 +106,8 @@ public:
             set.addScalar("dfsphWallRate", scratch);
         }
         minNeighbours_ = s.physics.dimension == 3 ? 20 : 7;
-        relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
-                                                    "dfsph: both solves"));
+        relaxation_ = Scalar(boundedJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
+                                                     2, "dfsph: both solves"));
     }
 
     ResultKind result() const override { return ResultKind::velocityChange; }

@@ -95,8 +95,8 @@ public:
     }
 
     void initialise(Scene& s) override {
-        relaxation_ = Scalar(scaledJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
-                                                    "iisph: the Jacobi iteration"));
+        relaxation_ = Scalar(boundedJacobiRelaxation(s.kernel, s.physics.particleSpacing, s.physics.dimension, omega_,
+                                                     2, "iisph: the Jacobi iteration"));
         for (ParticleSystem* fluid : s.ofRole(SystemRole::fluid)) {
             auto& set = fluid->particles;
             for (const char* name : {"iisphDiagonal", "iisphInvRho2", "iisphWallRate"}) set.addScalar(name, scratch);
