@@ -3,6 +3,7 @@
 #include "Simulation.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <numbers>
 #include <random>
@@ -42,6 +43,19 @@ std::string readFile(const std::filesystem::path& file) {
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
+}
+
+std::vector<std::vector<double>> readDataRows(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::vector<std::vector<double>> rows;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream fields(line);
+        std::vector<double> row;
+        for (std::string v; fields >> v;) row.push_back(std::strtod(v.c_str(), nullptr));
+        rows.push_back(std::move(row));
+    }
+    return rows;
 }
 
 double radialIntegral(const std::function<double(double)>& W, double h, int dim) {

@@ -24,6 +24,9 @@ private:
 };
 
 std::string readFile(const std::filesystem::path& file);
+// The numbers of a function object's .dat file (postProcessing/<name>/<time>/<file>.dat), a row
+// per line; '#' lines (the header) and blank ones are skipped. Empty if the file is missing.
+std::vector<std::vector<double>> readDataRows(const std::filesystem::path& file);
 
 // ∫ W dV of a radial function W(r) over [0, h] in 'dim' dimensions: Gauss–Legendre (5 points)
 // on 4096 equal intervals, whose nodes include r = h/2 (where piecewise kernels change formula).

@@ -33,23 +33,14 @@ struct TestScene {
     // rows of postProcessing/<name>/0/<file>.dat; the header's column names and units lines
     std::vector<std::vector<double>> rows(const std::string& name, std::string* header = nullptr,
                                           const std::string& file = "", std::string* units = nullptr) const {
-        std::ifstream in(dir.path() / "postProcessing" / name / "0" / ((file.empty() ? name : file) + ".dat"));
-        std::vector<std::vector<double>> out;
+        const fs::path path = dir.path() / "postProcessing" / name / "0" / ((file.empty() ? name : file) + ".dat");
+        std::ifstream in(path);
         std::string line;
-        while (std::getline(in, line)) {
-            if (line.empty()) continue;
-            if (line[0] == '#') {
-                if (header && header->empty()) *header = line;
-                else if (units && units->empty()) *units = line;
-                continue;
-            }
-            std::istringstream r(line);
-            std::vector<double> row;
-            std::string v;
-            while (r >> v) row.push_back(std::strtod(v.c_str(), nullptr));
-            out.push_back(row);
+        while (std::getline(in, line) && !line.empty() && line[0] == '#') {
+            if (header && header->empty()) *header = line;
+            else if (units && units->empty()) *units = line;
         }
-        return out;
+        return test::readDataRows(path);
     }
 };
 

@@ -321,17 +321,13 @@ TEST(Iisph, KeepsAHydrostaticColumnAtRestWithItsPressure) {
     // the probes' mean over the last quarter of the run against ρ0 g (H − z), as a fraction of
     // ρ0 g H, and their standard deviation: iisph's pressure is not still at rest (it differs from
     // step to step by the iterations' residual), so a reading at one moment says little
-    std::ifstream probes(dir / "postProcessing/p/0/p.dat");
-    ASSERT_TRUE(probes) << "no probe output";
+    const auto probes = test::readDataRows(dir / "postProcessing/p/0/p.dat");
+    ASSERT_FALSE(probes.empty()) << "no probe output";
     double sum[2] = {0, 0}, sum2[2] = {0, 0};
     int samples = 0;
-    for (std::string line; std::getline(probes, line);) {
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream in(line);
-        double t = 0, p0 = 0, p1 = 0;
-        in >> t >> p0 >> p1;
-        if (t < 0.75) continue;
-        sum[0] += p0, sum[1] += p1, sum2[0] += p0 * p0, sum2[1] += p1 * p1;
+    for (const auto& row : probes) {
+        if (row.size() < 3 || row[0] < 0.75) continue;
+        sum[0] += row[1], sum[1] += row[2], sum2[0] += row[1] * row[1], sum2[1] += row[2] * row[2];
         ++samples;
     }
     ASSERT_GT(samples, 50);

@@ -178,22 +178,21 @@ TEST_P(TankForce, BalancesTheWaterMomentumAndIsItsWeight) {
     const Eigen::Vector3d p2 = momentumOf(water);
     const double weight = 9.81 * water.particles.particleMass() * double(water.size());
     // force.dat of the restarted run: one row a step, the force of the step that ends at t
-    std::ifstream in(dir / "postProcessing/onTank/1/force.dat");
-    std::string line, header;
+    const fs::path forceFile = dir / "postProcessing/onTank/1/force.dat";
+    std::ifstream in(forceFile);
+    std::string header, units;
     std::getline(in, header);
     EXPECT_EQ(header.rfind("# Time\ttotal_x\ttotal_y\ttotal_z\tpressure_x", 0), 0u) << header;
+    std::getline(in, units);
+    EXPECT_EQ(units.rfind("# [s]\t[N/m]\t[N/m]", 0), 0u) << "units: " << units;
     double impulse = 0, lastTime = 1.0, pressureSum = 0, sum = 0;
     int rows = 0;
-    std::getline(in, line);
-    EXPECT_EQ(line.rfind("# [s]\t[N/m]\t[N/m]", 0), 0u) << "units: " << line;
-    while (std::getline(in, line)) {
-        std::istringstream row(line);
-        double t, total[3], pressure[3];
-        row >> t >> total[0] >> total[1] >> total[2] >> pressure[0] >> pressure[1] >> pressure[2];
-        impulse += total[1] * (t - lastTime);
-        lastTime = t;
-        sum += total[1];
-        pressureSum += pressure[1];
+    for (const auto& row : test::readDataRows(forceFile)) { // t, total x y z, pressure x y z
+        ASSERT_GE(row.size(), 7u);
+        impulse += row[2] * (row[0] - lastTime);
+        lastTime = row[0];
+        sum += row[2];
+        pressureSum += row[5];
         ++rows;
     }
     ASSERT_GT(rows, 100);
