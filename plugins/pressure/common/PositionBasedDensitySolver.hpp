@@ -31,9 +31,12 @@
 // constraint error by 1 − (1 + ω) μ/(1 + ε/D0), and μ, the mode's eigenvalue of J Jᵀ over D0,
 // reaches 2.1 (2D) and 2.8 (3D) for the cubic spline at h = 2 Δx, 2.9 and 4.9 at h = 2.6 Δx,
 // so with ε = 0 the shortest modes grow (|·| > 1); the density clamp damps what remains.
-// Where the kernel's largest lattice gain g (= μ/2) exceeds 1.8 (Wendland C2 at 4Δx in 2D: 2.84,
-// where pbf's Taylor–Green vortex blew up in 16 steps), (1 + ω) is scaled by 1.8/g
-// (jacobiRelaxationScale, LatticePrototype.hpp: the rule of every Jacobi-type solver here).
+// (1 + ω) is held to at most 1.8 (1 + ε/D0)/(2 g), g = μ_max/2 the kernel's largest lattice gain
+// (boundedJacobiRelaxation, LatticePrototype.hpp: the rule of every Jacobi-type solver here):
+// with ε = D0, 1.8/g, which leaves the paper's 1.5 on kernels of g ≤ 1.2 and makes it 0.63 on the
+// Wendland C2 at 4Δx in 2D (g = 2.84, where pbf's Taylor–Green vortex blew up in 16 steps without
+// a bound, and relaxedPbf's 1.5 × 0.63, the bound applied to the nominal step, rang a still
+// column by ±50 % of its pressure and the Colagrossi far wall at H/80, issue 35).
 // Wall particles take part in the density and in the correction with the volume V_b = M_b/ρ0
 // of the masses the boundary model gives them. Boundaries of their own pressure (adami) also push
 // with it: after every correction the core extrapolates p_b from the fluid's pressure of the

@@ -41,10 +41,14 @@
 // the solver passes (and the viscosity, through Scene::fluidPairGradients) only stream it;
 // the walls' velocities do not change within a step, so their terms need only Σ_b M_b ∇W_ib and
 // Σ_b M_b v_b·∇W_ib per particle, also computed once.
-// Both solves' κ are relaxed by ω (omega, default 1: the paper's Jacobi), scaled by 1.8/g where
-// the kernel's largest lattice correction gain g exceeds 1.8 (jacobiRelaxationScale,
-// LatticePrototype.hpp; Wendland C2 at 4Δx in 2D: g = 2.84, where the Colagrossi dam break blew
-// up at its corner at H/40, the max speed doubling every step from the first).
+// Both solves' κ are relaxed by ω (omega, default 1: the paper's Jacobi), held to at most 0.9/g,
+// g the kernel's largest lattice correction gain (boundedJacobiRelaxation, LatticePrototype.hpp:
+// κ's update is twice pcisph's δ, so ω g ≤ 0.9 keeps every lattice wave's gain at most 1.8;
+// 0.32 for the Wendland C2 at 4Δx in 2D, 0.64 for the cubic spline at 2Δx in 3D, near
+// SPlisHSPlasH's 0.5). At ω g up to 1.8 (the bound on ω alone) the waves beyond the divergence
+// limit were held only by the clamp ρ* ≥ ρ0 and rang a still column by ±70 % of its pressure
+// and the Colagrossi far wall at H/80 (issue 35); without a bound the Colagrossi dam break blew
+// up at its corner at H/40.
 // Both solves warm-start from half of the last step's κ, scaled to this step's Δt (fields
 // dfsphKappa, dfsphKappaV hold κ Δt² and κ_v Δt, as SPlisHSPlasH: restarts continue bit for bit). The model returns (v* − v)/Δt as its acceleration, so symplectic
 // Euler gives v_{n+1} = v*, x_{n+1} = x_n + Δt v* (ResultKind::velocityChange). Wall particles b

@@ -12,9 +12,9 @@
 //     a_ii = Σ_j m (d_ii − d_ji)·∇W_ij + Σ_b M_b d_ii·∇W_ib
 //          = −Δt²/ρ_i² [(Σ_j m ∇W_ij + Σ_b (1 + μ_b) M_b ∇W_ib)·(Σ_j m ∇W_ij + Σ_b M_b ∇W_ib) + m² Σ_j |∇W_ij|²]
 //   p_i ← max(0, (1 − ω) p_i + ω (ρ0 − ρ_adv,i − s_i)/a_ii)  =  max(0, p_i + ω (ρ0 − ρ*_i)/a_ii)
-// (ω: omega, 0.5 as the paper, scaled by 1.8/g where the kernel's largest lattice correction
-// gain g exceeds 1.8, jacobiRelaxationScale in LatticePrototype.hpp: with the Wendland C2 at 4Δx
-// in 2D, g = 2.84, ω = 0.5 blew up at the Colagrossi dam break's corner)
+// (ω: omega, 0.5 as the paper, held to at most 0.9/g, g the kernel's largest lattice correction
+// gain, boundedJacobiRelaxation in LatticePrototype.hpp, as ω/a_ii is twice pcisph's δ: with the
+// Wendland C2 at 4Δx in 2D, g = 2.84, ω = 0.5 blew up at the Colagrossi dam break's corner)
 //   a_p,i = −Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇W_ij − Σ_b M_b (p_i/ρ_i² + q_b) ∇W_ib        (returned)
 // (μ_b = 1 on a wall that mirrors the fluid's pressure, q_b = p_i/ρ_i²: the boundary model's
 // Akinci walls; μ_b = 0 on a wall with its own pressure and density, q_b = p_b/ρ_b², constant
