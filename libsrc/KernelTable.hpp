@@ -46,18 +46,20 @@ public:
     // The same from r² = |r_ij|² (no square root, no division on the hot path).
     Scalar WSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
-        const int k = static_cast<int>(s);
-        if (k >= sqIntervals_ || r2 < Scalar(0)) [[unlikely]]
+        // compared before the conversion: a NaN or huge r² (a diverging run's) is outside, not
+        // an index out of range
+        if (!(s < Scalar(sqIntervals_)) || r2 < Scalar(0)) [[unlikely]]
             return Scalar(0);
+        const int k = static_cast<int>(s);
         if (k < nearIntervals_) [[unlikely]] return W(std::sqrt(r2));
         return horner(wSq_[k], s - Scalar(k));
     }
     // dW/dr / r as a function of r² (0 at r = 0): ∇_i W_ij = r_ij · gradFactorSq(r²).
     Scalar gradFactorSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
-        const int k = static_cast<int>(s);
-        if (k >= sqIntervals_ || r2 < Scalar(0)) [[unlikely]]
+        if (!(s < Scalar(sqIntervals_)) || r2 < Scalar(0)) [[unlikely]]
             return Scalar(0);
+        const int k = static_cast<int>(s);
         if (k < nearIntervals_) [[unlikely]] {
             const Scalar r = std::sqrt(r2);
             return r > Scalar(0) ? dWdr(r) / r : Scalar(0);
@@ -78,11 +80,12 @@ public:
     };
     [[gnu::always_inline]] Values valuesSq(Scalar r2) const {
         const Scalar s = r2 * invDs_;
-        const int k = static_cast<int>(s);
         // both rare in a pair loop (its lists hold the pairs within h; few are closer than h/4):
-        // the hints keep the table path a straight run of instructions
-        if (k >= sqIntervals_ || r2 < Scalar(0)) [[unlikely]]
+        // the hints keep the table path a straight run of instructions; outside is tested before
+        // the conversion, so that a NaN or huge r² (a diverging run's) reads zero, not out of range
+        if (!(s < Scalar(sqIntervals_)) || r2 < Scalar(0)) [[unlikely]]
             return {0, 0, 0};
+        const int k = static_cast<int>(s);
         if (k < nearIntervals_) [[unlikely]] {
             const Scalar r = std::sqrt(r2);
             const Scalar F = r > Scalar(0) ? dWdr(r) / r : Scalar(0);
@@ -99,8 +102,8 @@ private:
 
     Scalar evaluate(const std::vector<Block>& table, Scalar r) const {
         const Scalar s = r * invDr_;
+        if (!(s < Scalar(intervals_)) || r < Scalar(0)) return Scalar(0); // NaN too
         const int k = static_cast<int>(s);
-        if (k >= intervals_ || r < Scalar(0)) return Scalar(0);
         return horner(table[k], s - Scalar(k));
     }
     static Scalar horner(const Block& c, Scalar t) { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }

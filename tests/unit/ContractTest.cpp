@@ -24,6 +24,7 @@
 #include <gtest/gtest.h>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <random>
@@ -195,6 +196,18 @@ TEST_P(KernelContract, TableMatchesAnalyticKernel) {
     const Vec3 g = table.gradW(rij);
     EXPECT_LT(g.dot(rij), 0.0);
     EXPECT_EQ(table.gradW(Vec3::Zero()), Vec3::Zero());
+    // a diverging run's distances (NaN, infinite, huge) are outside the support, not indices out
+    // of range: its pair loops once read the tables at index INT_MIN and the run died of SIGSEGV
+    // instead of stopping at the blow-up check
+    for (const Scalar bad : {std::numeric_limits<Scalar>::quiet_NaN(), std::numeric_limits<Scalar>::infinity(),
+                             Scalar(1e30), std::numeric_limits<Scalar>::max()}) {
+        EXPECT_EQ(table.W(bad), 0.0);
+        EXPECT_EQ(table.dWdr(bad), 0.0);
+        EXPECT_EQ(table.laplacian(bad), 0.0);
+        EXPECT_EQ(table.WSq(bad), 0.0);
+        EXPECT_EQ(table.gradFactorSq(bad), 0.0);
+        EXPECT_EQ(table.dampedGradFactorSq(bad), 0.0);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryKernel, KernelContract, testing::ValuesIn(kernelCases()),
