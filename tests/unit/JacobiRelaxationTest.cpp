@@ -75,8 +75,8 @@ INSTANTIATE_TEST_SUITE_P(EveryJacobiSolver, JacobiRelaxation, ::testing::Values(
 // number of iterations a step, with no stop criterion switching in between, stands still. Held
 // in the nominal relaxation only, dfsph's and relaxedPbf's waves beyond the bound were clamped
 // every step and the column rang for good: the bottom probe's std over 0.25–0.5 s 47 % (dfsph) and
-// 30 % (relaxedPbf) of ρ0 g (H − z), period 20–30 steps (now 0.15 % and 0.21 %; pcisph, iisph, pbf
-// 0.08–0.18 %, unchanged); the same mode swung the Colagrossi far wall at H/80 (issue 35).
+// 30 % (relaxedPbf) of ρ0 g (H − z), period 20–30 steps (now 0.15 % and 0.05 %; pcisph, iisph, pbf
+// 0.04 %, unchanged); the same mode swung the Colagrossi far wall at H/80 (issue 35).
 class StillColumn : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(StillColumn, AtAFixedIterationCountAWideKernelsColumnStandsStill) {
