@@ -1,7 +1,7 @@
 // The Jacobi-type pressure solvers (dfsph, iisph, pbf) with a wide kernel: Wendland C2 at a
 // support of 4Δx in 2D, whose largest lattice correction gain (2.84) is above the 2 where the
-// paper's relaxations diverge. The solvers scale their relaxation by 1.8/gain
-// (jacobiRelaxationScale, plugins/pressure/common/LatticePrototype.hpp); without it iisph blew up
+// paper's relaxations diverge. The solvers hold their relaxation to a gain of 1.8 on every wave
+// (boundedJacobiRelaxation, plugins/pressure/common/LatticePrototype.hpp); without it iisph blew up
 // in this tank at step 8 (dfsph at the Colagrossi dam break's corner at H/40, a deeper and wider
 // column). A column of 40 × 26 particles on Adami walls of 4 layers must settle without a growing
 // wave for 0.05 s.

@@ -400,7 +400,7 @@ private:
     std::string name_;
     Scalar rho0_;
     Scalar volume_ = 0, d0_ = 0, epsilon_ = 0, wDeltaQ_ = 0;
-    Scalar relaxation_ = 1; // (1 + omega) × jacobiRelaxationScale (LatticePrototype.hpp)
+    Scalar relaxation_ = 1; // 1 + omega held to the bound (boundedJacobiRelaxation, LatticePrototype.hpp)
     // each fluid's time of its last solve (the warm start's source is taken once a time)
     std::map<std::string, double> lastSolveTime_;
     std::vector<Vec3> predicted_, correction_, step_;

@@ -412,7 +412,7 @@ private:
     }
 
     Scalar rho0_, warmStart_, omega_;
-    Scalar relaxation_ = 1; // omega × jacobiRelaxationScale (LatticePrototype.hpp)
+    Scalar relaxation_ = 1; // omega held to the bound (boundedJacobiRelaxation, LatticePrototype.hpp)
     bool divergenceSolve_, checkPositions_;
     static constexpr int maxPositionChecks = 10;
     Scalar maxDivergenceError_ = Scalar(0.001);

@@ -14,7 +14,8 @@
 //   p_i ← max(0, (1 − ω) p_i + ω (ρ0 − ρ_adv,i − s_i)/a_ii)  =  max(0, p_i + ω (ρ0 − ρ*_i)/a_ii)
 // (ω: omega, 0.5 as the paper, held to at most 0.9/g, g the kernel's largest lattice correction
 // gain, boundedJacobiRelaxation in LatticePrototype.hpp, as ω/a_ii is twice pcisph's δ: with the
-// Wendland C2 at 4Δx in 2D, g = 2.84, ω = 0.5 blew up at the Colagrossi dam break's corner)
+// Wendland C2 at 4Δx in 2D, g = 2.84, an unbounded ω = 0.5 blew up at the Colagrossi dam break's
+// corner)
 //   a_p,i = −Σ_j m (p_i/ρ_i² + p_j/ρ_j²) ∇W_ij − Σ_b M_b (p_i/ρ_i² + q_b) ∇W_ib        (returned)
 // (μ_b = 1 on a wall that mirrors the fluid's pressure, q_b = p_i/ρ_i²: the boundary model's
 // Akinci walls; μ_b = 0 on a wall with its own pressure and density, q_b = p_b/ρ_b², constant
@@ -223,7 +224,7 @@ private:
     }
 
     Scalar rho0_, omega_, warmStart_;
-    Scalar relaxation_ = 0.5; // omega × jacobiRelaxationScale (LatticePrototype.hpp)
+    Scalar relaxation_ = 0.5; // omega held to the bound (boundedJacobiRelaxation, LatticePrototype.hpp)
     IterativeSolverControls controls_;
     // the solve's: v_adv, q = p/ρ² (and the next), the next p, a_p = Δx/Δt², ρ_adv, ρ*, Σ_b M_b q_b ∇W_ib
     std::vector<Vec3> advected_;
