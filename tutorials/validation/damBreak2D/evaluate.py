@@ -51,13 +51,16 @@ def main():
     used = (exp_T <= 3) & (exp_T <= T[-1])
     if not used.any():
         sys.exit("the run ends at T = %.3g, before the first experimental point" % T[-1])
-    dev = np.interp(exp_T[used], T, Z) - exp_Z[used]
+    def deviation(shift):  # Z_SPH(T - shift) - Z_exp(T) at the experiment's points
+        return np.interp(exp_T[used] - shift, T, Z) - exp_Z[used]
+
+    dev = deviation(0)
     rms = np.sqrt(np.mean(dev ** 2))
     print("Figure: frontRMS = %.4f (RMS of Z over %d experimental points with T <= 3; run ends at T = %.3g)"
           % (rms, used.sum(), T[-1]))
     print("Figure: frontMaxDev = %.4f" % np.max(np.abs(dev)))
     shifts = np.arange(-0.5, 1.0 + 1e-9, 0.005)
-    shapeRms = [np.sqrt(np.mean((np.interp(exp_T[used] - s, T, Z) - exp_Z[used]) ** 2)) for s in shifts]
+    shapeRms = [np.sqrt(np.mean(deviation(s) ** 2)) for s in shifts]
     best = int(np.argmin(shapeRms))
     shift = shifts[best]
     print("Figure: frontShift = %.3f (the run leads the experiment by t = %.1f ms)"
