@@ -7,6 +7,9 @@
 // and Coulomb friction μ:
 //   u_n = u·n < 0:   Δu = −(1 + e) u_n n − min(1, μ (1 + e) |u_n| / |u_t|) u_t,   u_t = u − u_n n,
 //   a_i += Δu/Δt
+// and, whatever u_n, at least the normal speed that ends the step no further past the face than x_i
+// (a position-based bound: the share's normal is tilted by the wall particles' bumps near the face,
+// docs/MODELS.md §collision)
 // (e = 0, μ = 0: the approach is stopped and the slide kept: direct forcing, Becker, Tessendorf &
 // Teschner 2009, IEEE TVCG 15(3) 493–503, doi:10.1109/TVCG.2008.107). The response with energy
 // loss is seed 000's (Perea & Cordero §8, after Solenthaler et al. 2011, VRIPHYS'11 39–46; the
