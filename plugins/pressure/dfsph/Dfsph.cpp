@@ -277,6 +277,7 @@ public:
     }
 
     bool isIterative() const override { return true; }
+    double maxTimeStep(const Scene& s) const override { return controls_.maxTimeStep(s); }
     SolverStats lastSolve() const override { return stats_; }
 
 private:
