@@ -8,6 +8,11 @@
 
 namespace spindrift {
 
+// What the core has measured of the state a step starts from, for the models' step limits.
+struct StateSpeeds {
+    double fluid = 0; // the largest speed |v| of a fluid particle [m/s] (the fluids' own particles)
+};
+
 class Model {
 public:
     virtual ~Model() = default;
@@ -19,7 +24,7 @@ public:
     // own). The core takes the smallest over every model, the CFL condition on the sound and
     // flow speeds and the acceleration limit (e.g. the viscous limit 0.125 h_s²/ν of Morris et
     // al. 1997, a capillary limit of surface tension, a body's contact stiffness).
-    virtual double maxTimeStep(const Scene&) const { return std::numeric_limits<double>::infinity(); }
+    virtual double maxTimeStep(const Scene&, const StateSpeeds&) const { return std::numeric_limits<double>::infinity(); }
 };
 
 } // namespace spindrift

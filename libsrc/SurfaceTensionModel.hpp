@@ -21,7 +21,7 @@ public:
 
     Scalar sigma() const { return sigma_; }
 
-    double maxTimeStep(const Scene& s) const override {
+    double maxTimeStep(const Scene& s, const StateSpeeds&) const override {
         return capillaryTimeStepLimit(s.physics.rho0, s.physics.particleSpacing, sigma_);
     }
 

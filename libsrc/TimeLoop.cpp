@@ -162,18 +162,19 @@ double Simulation::stableDeltaT() const {
         vMax = std::max(vMax, std::sqrt(parallelMax(f->ownedSize(), [&](std::size_t i) { return v[i].squaredNorm(); })));
         aMax = std::max(aMax, std::sqrt(parallelMax(f->ownedSize(), [&](std::size_t i) { return a[i].squaredNorm(); })));
     }
+    const StateSpeeds speeds{vMax};
     for (const ParticleSystem* w : s.boundaries()) // a moving wall's fastest particle
         if (w->motion) vMax = std::max(vMax, wallSpeed(*w, s.time));
-    const double c0 = s.constants.soundSpeed;
-    double dt = std::numeric_limits<double>::infinity();
-    if (c0 + vMax > 0) dt = time_->maxCo() * h / (c0 + vMax);
-    if (aMax > 0) dt = std::min(dt, 0.25 * std::sqrt(h / aMax));
     for (const ParticleSystem* b : s.ofRole(SystemRole::body)) { // a body's fastest particle
         const auto& v = b->particles.velocity();
         vMax = std::max(vMax, std::sqrt(parallelMax(v.size(), [&](std::size_t i) { return v[i].squaredNorm(); })));
     }
-    // the limits the models declare (viscosity's, ...)
-    for (const Model* m : models()) dt = std::min(dt, m->maxTimeStep(s));
+    const double c0 = s.constants.soundSpeed;
+    double dt = std::numeric_limits<double>::infinity();
+    if (c0 + vMax > 0) dt = time_->maxCo() * h / (c0 + vMax);
+    if (aMax > 0) dt = std::min(dt, 0.25 * std::sqrt(h / aMax));
+    // the limits the models declare (viscosity's, the iterative solvers' displacement, ...)
+    for (const Model* m : models()) dt = std::min(dt, m->maxTimeStep(s, speeds));
     return dt;
 }
 

@@ -172,7 +172,7 @@ public:
                     for (int j = 0; j <= reach; ++j)
                         for (int i = -reach; i <= reach; ++i) {
                             const Vec3 r(Scalar((i + ox) * dx), Scalar((distance + 0.5 + j) * dx),
-                                         Scalar((k + (dim == 3 ? oz : 0.0)) * dx));
+                                         Scalar((k + oz) * dx)); // (oz is 0 in 2D)
                             sum += double(s.kernel.W(r.norm()));
                         }
                 least = std::min(least, sum);

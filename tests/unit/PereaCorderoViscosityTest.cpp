@@ -228,7 +228,7 @@ TEST(PereaCorderoViscosity, OptionsAndErrors) {
     Scene s;
     s.constants = test::constantsFor(physics);
     const double h = s.constants.supportRadius, limit = 0.125 * 0.25 * h * h / (0.26 / physics.rho0);
-    EXPECT_NEAR(v->maxTimeStep(s), limit, test::tol(1e-12, 1e-5) * limit);
+    EXPECT_NEAR(v->maxTimeStep(s, StateSpeeds{}), limit, test::tol(1e-12, 1e-5) * limit);
 }
 
 TEST(PereaCorderoViscosity, WallFrictionDoesNotGrowWithTheDensityDeficit) {

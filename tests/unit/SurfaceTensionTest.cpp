@@ -268,8 +268,8 @@ TEST(SurfaceTension, CapillaryTimeStepLimit) {
     DropScene sc(2, 10 * dx);
     auto m = sc.model(mueller);
     const double limit = std::sqrt(rho0 * dx * dx * dx / (2 * std::numbers::pi * sigma));
-    EXPECT_NEAR(m->maxTimeStep(sc.s), limit, test::tol(1e-12, 1e-6) * limit); // (ρ0, Δx are Scalars)
-    EXPECT_TRUE(std::isinf(sc.model("type mueller2003; sigma 0;")->maxTimeStep(sc.s)));
+    EXPECT_NEAR(m->maxTimeStep(sc.s, StateSpeeds{}), limit, test::tol(1e-12, 1e-6) * limit); // (ρ0, Δx are Scalars)
+    EXPECT_TRUE(std::isinf(sc.model("type mueller2003; sigma 0;")->maxTimeStep(sc.s, StateSpeeds{})));
 }
 
 TEST(SurfaceTension, BadSigmaIsRefusedNamingTheKeyword) {

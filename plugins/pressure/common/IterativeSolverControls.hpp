@@ -27,6 +27,7 @@
 #pragma once
 
 #include "Dictionary.hpp"
+#include "Model.hpp"
 #include "Parallel.hpp"
 #include "Scene.hpp"
 
@@ -92,14 +93,8 @@ struct IterativeSolverControls {
     }
 
     // Δt ≤ maxDisplacement Δx / |v|max over the fluids (+∞ at rest): the solver's Model::maxTimeStep.
-    double maxTimeStep(const Scene& s) const {
-        double vMax2 = 0;
-        for (const ParticleSystem* f : s.ofRole(SystemRole::fluid)) {
-            const auto& v = f->particles.velocity();
-            vMax2 = std::max(vMax2, parallelMax(f->ownedSize(), [&](std::size_t i) { return double(v[i].squaredNorm()); }));
-        }
-        return vMax2 > 0 ? maxDisplacement * s.physics.particleSpacing / std::sqrt(vMax2)
-                         : std::numeric_limits<double>::infinity();
+    double maxTimeStep(const Scene& s, const StateSpeeds& v) const {
+        return v.fluid > 0 ? maxDisplacement * s.physics.particleSpacing / v.fluid : std::numeric_limits<double>::infinity();
     }
 
     Scalar error(Scalar maxError, Scalar avgError) const { return norm == Norm::Maximum ? maxError : avgError; }

@@ -435,7 +435,7 @@ public:
     ResultKind result() const override { return ResultKind::positionChange; }
     bool isIterative() const override { return true; }
     SolverStats lastSolve() const override { return solver_.stats(); }
-    double maxTimeStep(const Scene& s) const override { return solver_.controls().maxTimeStep(s); }
+    double maxTimeStep(const Scene& s, const StateSpeeds& v) const override { return solver_.controls().maxTimeStep(s, v); }
 
 private:
     PositionBasedDensitySolver solver_;

@@ -205,7 +205,7 @@ public:
     }
 
     bool isIterative() const override { return true; }
-    double maxTimeStep(const Scene& s) const override { return controls_.maxTimeStep(s); }
+    double maxTimeStep(const Scene& s, const StateSpeeds& v) const override { return controls_.maxTimeStep(s, v); }
     SolverStats lastSolve() const override { return stats_; }
 
 private:

@@ -51,7 +51,7 @@ public:
     }
 
     // the viscous limit of the effective ν
-    double maxTimeStep(const Scene& s) const override { return viscousTimeStepLimit(s, nu_ * correction_); }
+    double maxTimeStep(const Scene& s, const StateSpeeds&) const override { return viscousTimeStepLimit(s, nu_ * correction_); }
 
     void initialise(Scene& s) override {
         const Scalar moment = latticeCorrection_ ? latticeSecondMoment(s) : Scalar(1);

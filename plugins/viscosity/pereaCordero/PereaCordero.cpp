@@ -98,7 +98,7 @@ public:
         }
     }
 
-    double maxTimeStep(const Scene& s) const override {
+    double maxTimeStep(const Scene& s, const StateSpeeds&) const override {
         return viscousTimeStepLimit(s, constantMu_ ? mu_ / rho0_ : nu_);
     }
 
