@@ -148,6 +148,22 @@ TEST(RigidBody, OfTheWatersDensityStaysPutInStillWater) {
     EXPECT_LT(drift.norm(), 0.1 * 0.02) << "drift (" << drift.transpose() << ") over 2 s";
 }
 
+// A body's fastest particle counts in the CFL condition as the fluid's and a moving wall's do:
+// Δt ≤ maxCo h / (c0 + |v|max), here the body's 5 m/s over still water.
+TEST(RigidBody, ItsSpeedLimitsTheStep) {
+    log::setQuiet(true);
+    test::TempDir tmp;
+    const fs::path dir = bodyCase(tmp.path() / "case",
+                                  "fluid { water { type box; min (0 0 0); max (0.4 0.1 0); } }\n"
+                                  "walls { tank { type container; min (0 0 0); max (0.4 0.4 0); layers 3; open (yMax); } }\n",
+                                  "        type box; min (0.14 0.2 0); max (0.26 0.3 0); density 500; velocity (0 -5 0);\n", "1");
+    Simulation sim(dir);
+    const Scene& s = sim.scene();
+    const double c0 = s.constants.soundSpeed, h = s.constants.supportRadius;
+    ASSERT_GT(c0, 0.0);
+    EXPECT_LE(sim.stableDeltaT(), 0.15 * h / (c0 + 5) * (1 + 1e-6)) << "c0 " << c0 << ", h " << h;
+}
+
 // A floating box dropped into water, run to 0.16 s at once and in two halves (a restart from
 // 0.08 s, at another thread count): the body's state and the fluid continue bit for bit.
 TEST(RigidBody, ARestartContinuesTheBodyBitForBit) {
