@@ -49,7 +49,7 @@ if(PVPYTHON)
   # blocks), iisph; quick mode dx 0.01 (the tutorial's 0.005): upright, compression 0.11 %; its
   # draft, the gauges' still level less its bottom (the level its centre of mass decays to, a
   # damped heave fitted over 3-6 s: +-8 mm, 0.85 s): -1.68 % off Archimedes' (the centre 0.84 mm
-  # = 0.08 dx high); as shipped -0.79 %, dx 0.02 -3.5 % (docs/VALIDATION.md §0b)
+  # = 0.08 dx high); as shipped -0.79 %, dx 0.02 -3.8 %, 0.0025 -0.57 % (docs/VALIDATION.md §0b)
   tutorial_physics(floatingBox2D floatingBox2D "constant/fluidProperties:particleSpacing=0.01"
     --max-density-error 0.025 --inside --floats box 3 0.025)
   # the same box started at rest in the water at Archimedes' draft (water 0.41 m deep less the
