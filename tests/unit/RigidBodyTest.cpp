@@ -100,6 +100,13 @@ fs::path bodyCase(const fs::path& dir, const std::string& fluidAndWalls, const s
     return dir;
 }
 
+// constant/geometry's water 'depth' [m] deep in a 0.4 m wide tank 0.4 m high, open at the top
+// ('extra': more of the water's entries)
+std::string waterInSmallTank(const std::string& depth, const std::string& extra = "") {
+    return "fluid { water { type box; min (0 0 0); max (0.4 " + depth + " 0); " + extra + "} }\n"
+           "walls { tank { type container; min (0 0 0); max (0.4 0.4 0); layers 3; open (yMax); } }\n";
+}
+
 RigidBody::V3 bodyPosition(const fs::path& timeDir) {
     const Dictionary d = Dictionary::fromFile(timeDir / "uniform/bodies");
     const auto p = d.subDict("block").get<std::vector<double>>("position");
@@ -137,9 +144,7 @@ TEST(RigidBody, WithoutFluidFallsBallisticallyThenStopsOnTheFloor) {
 TEST(RigidBody, OfTheWatersDensityStaysPutInStillWater) {
     log::setQuiet(true);
     test::TempDir tmp;
-    const fs::path dir = bodyCase(tmp.path() / "case",
-                                  "fluid { water { type box; min (0 0 0); max (0.4 0.3 0); initialPressure hydrostatic; } }\n"
-                                  "walls { tank { type container; min (0 0 0); max (0.4 0.4 0); layers 3; open (yMax); } }\n",
+    const fs::path dir = bodyCase(tmp.path() / "case", waterInSmallTank("0.3", "initialPressure hydrostatic; "),
                                   "        type box; min (0.14 0.1 0); max (0.26 0.2 0); density 1000;\n", "2");
     Simulation sim(dir);
     sim.run();
@@ -153,9 +158,7 @@ TEST(RigidBody, OfTheWatersDensityStaysPutInStillWater) {
 TEST(RigidBody, ItsSpeedLimitsTheStep) {
     log::setQuiet(true);
     test::TempDir tmp;
-    const fs::path dir = bodyCase(tmp.path() / "case",
-                                  "fluid { water { type box; min (0 0 0); max (0.4 0.1 0); } }\n"
-                                  "walls { tank { type container; min (0 0 0); max (0.4 0.4 0); layers 3; open (yMax); } }\n",
+    const fs::path dir = bodyCase(tmp.path() / "case", waterInSmallTank("0.1"),
                                   "        type box; min (0.14 0.2 0); max (0.26 0.3 0); density 500; velocity (0 -5 0);\n", "1");
     Simulation sim(dir);
     const Scene& s = sim.scene();
