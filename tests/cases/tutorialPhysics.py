@@ -287,10 +287,10 @@ def main():
         # a level from the start's volumes does not.)
         level_source = "the water's volume at the start with the body's displacement"
         level = tank_lo[up] + (np.sum(1 / rho_0) * np.mean(rho_0) * volume + (hi[horizontal] - lo[horizontal]) * draft) / width
-        gauges = sorted(n for n in (os.listdir(os.path.join(case, "postProcessing"))
-                                    if os.path.isdir(os.path.join(case, "postProcessing")) else [])
-                        if any((sv.read_table(p) or sv.Table(["-"], np.zeros((0, 1)))).columns[-1].startswith("level(")
-                               for p in glob.glob(os.path.join(case, "postProcessing", n, "*", n + ".dat"))))
+        gauges = sorted({os.path.basename(os.path.dirname(os.path.dirname(p)))
+                         for p in glob.glob(os.path.join(case, "postProcessing", "*", "*", "*.dat"))
+                         if os.path.basename(p) == os.path.basename(os.path.dirname(os.path.dirname(p))) + ".dat"
+                         and "level(" in open(p).readline()})
         if gauges:
             table = sv.read_dat(gauges[0], case)
             inside = table.time >= start - 1e-9
