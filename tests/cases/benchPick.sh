@@ -33,16 +33,21 @@ cmp -s "$work/original" "$work/tank/system/sphSchemes" || fail "an unmet bound c
 "$bench" -case "$work/tank" -quick -output "$work/out" -noPlot "${vary[@]}" -pick "bottomPressureError<=50" | tee "$work/log"
 csv=$work/out/bench.csv
 col() { head -1 "$csv" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
-fastest=$(tail -n +2 "$csv" | awk -F, -v s="$(col status)" -v w="$(col wallTime_s)" '$s == "ok"' \
-          | sort -t, -k"$(col wallTime_s)" -g | head -1)
-kernel=$(cut -d, -f"$(col kernel.type)" <<< "$fastest")
-alpha=$(cut -d, -f"$(col viscosity.alpha)" <<< "$fastest")
-[ -n "$kernel" ] || fail "no ok row: $(cat "$csv")"
+# the fastest rows at the table's precision (two runs may tie there: any of them is right)
+ok=$(tail -n +2 "$csv" | awk -F, -v s="$(col status)" '$s == "ok"')
+[ -n "$ok" ] || fail "no ok row: $(cat "$csv")"
+fastestTime=$(cut -d, -f"$(col wallTime_s)" <<< "$ok" | sort -g | head -1)
+fastest=$(awk -F, -v w="$(col wallTime_s)" -v t="$fastestTime" '$w == t' <<< "$ok")
 schemes=$work/tank/system/sphSchemes
 cmp -s "$work/original" "$schemes.orig" || fail "the replaced sphSchemes is not kept as sphSchemes.orig"
 grep -q '^// spindriftBench -pick "bottomPressureError<=50": the fastest of 4 measured' "$schemes" \
     || fail "no comment citing the pick: $(head -3 "$schemes")"
-grep -q "row [1-4]: kernel.type=$kernel viscosity.alpha=$alpha" "$schemes" || fail "the comment names another row: $(head -3 "$schemes")"
+kernel= alpha=
+while IFS= read -r row; do
+    k=$(cut -d, -f"$(col kernel.type)" <<< "$row") a=$(cut -d, -f"$(col viscosity.alpha)" <<< "$row")
+    if grep -q "row [1-4]: kernel.type=$k viscosity.alpha=$a," "$schemes"; then kernel=$k alpha=$a; fi
+done <<< "$fastest"
+[ -n "$kernel" ] || fail "the comment names another row than the fastest ($fastestTime s): $(head -3 "$schemes")"
 tr -s ' \n' ' ' < "$schemes" | grep -Eq "kernel \{ type $kernel; \}" || fail "sphSchemes does not have kernel $kernel"
 tr -s ' \n' ' ' < "$schemes" | grep -Eq "alpha $alpha;" || fail "sphSchemes does not have alpha $alpha"
 # the picked case runs
