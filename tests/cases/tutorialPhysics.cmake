@@ -134,7 +134,8 @@ if(PVPYTHON)
   # period within 1 %, the waves breaking on the beach (the largest height 0.6-1.3 of its still
   # depth, the surf zone's height at half that depth below 0.7 H_b), nothing through the beach.
   tutorial_physics(waveTank2D.breaking waveTank2D "" --inside --volume 0.01)
-  set_tests_properties(Tutorial.waveTank2D.breaking PROPERTIES TIMEOUT 2400)
+  # (COST: started first, so that ctest -j runs the short tests beside it, not after it)
+  set_tests_properties(Tutorial.waveTank2D.breaking PROPERTIES TIMEOUT 2400 COST 1000)
   set_property(TEST Tutorial.waveTank2D.breaking APPEND PROPERTY ENVIRONMENT
     "TUTORIAL_CHECK=${PROJECT_SOURCE_DIR}/etc/python/checkWaves.py --breaking beach")
   # oceanBreaking3D (the seed's scale, 258,048 particles, relaxedPbf), quick mode: dx 0.05 (4,032
