@@ -93,6 +93,15 @@ def heave_at_rest(t, y):
     return float(best[1]), best[2], best[3], best[4]
 
 
+def written_dat_headers(case):
+    """(name, first line) of every function object's postProcessing/<name>/<time>/<name>.dat."""
+    for path in glob.glob(os.path.join(case, "postProcessing", "*", "*", "*.dat")):
+        name = os.path.basename(os.path.dirname(os.path.dirname(path)))
+        if os.path.basename(path) == name + ".dat":
+            with open(path) as f:
+                yield name, f.readline()
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("case")
@@ -287,10 +296,7 @@ def main():
         # a level from the start's volumes does not.)
         level_source = "the water's volume at the start with the body's displacement"
         level = tank_lo[up] + (np.sum(1 / rho_0) * np.mean(rho_0) * volume + (hi[horizontal] - lo[horizontal]) * draft) / width
-        gauges = sorted({os.path.basename(os.path.dirname(os.path.dirname(p)))
-                         for p in glob.glob(os.path.join(case, "postProcessing", "*", "*", "*.dat"))
-                         if os.path.basename(p) == os.path.basename(os.path.dirname(os.path.dirname(p))) + ".dat"
-                         and "level(" in open(p).readline()})
+        gauges = sorted({name for name, header in written_dat_headers(case) if "level(" in header})
         if gauges:
             table = sv.read_dat(gauges[0], case)
             inside = table.time >= start - 1e-9
